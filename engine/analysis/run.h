@@ -1,0 +1,83 @@
+#pragma once
+// The engine's one entry point: run a model, get response (and sensitivity) histories and a
+// summary back. Used by the `pfem` command, the gRPC server and the reliability drivers.
+//
+// Thread-safety: run() keeps no shared mutable state; several runs may go side by side on
+// different threads. The progress callback is called on the running thread after every step.
+#include <atomic>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pfem/v1/model.pb.h"
+
+namespace pfem {
+
+enum class SensitivityMethod { kNone, kDdm, kFdm };
+
+struct Progress {
+  int step = 0;                 // steps completed
+  int total_steps = 0;          // steps to t_end
+  double time = 0.0;            // simulated time reached [s]
+  double t_end = 0.0;           // [s]
+  int newton_iterations = 0;    // Newton iterations of the last step
+  double elapsed_seconds = 0.0;
+  double remaining_seconds = 0.0;  // estimate from the mean step cost so far
+};
+
+struct RunOptions {
+  std::optional<double> t_end;  // overrides analysis.t_end
+  std::optional<double> dt;     // overrides analysis.dt
+  SensitivityMethod sensitivity = SensitivityMethod::kNone;
+  std::vector<std::string> params;  // parameter names to differentiate; empty = all of the model's
+  double fdm_eps = 1e-7;            // relative perturbation of the FDM
+  std::string vtk_dir;              // when set, write .vtu files and a .pvd there
+  std::optional<int> vtk_every;     // overrides analysis.vtk_every
+  int threads = 1;                  // threads for element loops
+  std::function<void(const Progress&)> progress;  // may be empty
+  const std::atomic<bool>* cancel = nullptr;      // checked between steps (and Newton iterations)
+};
+
+enum class RunStatus { kCompleted, kFailed, kCancelled };
+
+// Histories sampled every analysis.record_every steps (and at t = 0).
+struct Histories {
+  std::vector<std::string> columns;        // without the leading "time"
+  std::vector<double> time;                // one entry per row
+  std::vector<std::vector<double>> rows;   // rows[i][j]: column j at time[i]
+};
+
+struct RunSummary {
+  RunStatus status = RunStatus::kCompleted;
+  std::string message;      // why a run failed or was cancelled (empty when completed)
+  int failed_step = -1;     // step at which it failed, -1 otherwise
+  double failed_time = 0.0;
+  int steps = 0;
+  double t_end = 0.0;
+  double dt = 0.0;
+  double wall_seconds = 0.0;
+  double response_seconds = 0.0;
+  double sensitivity_seconds = 0.0;
+  long newton_iterations = 0;
+  int particles = 0;
+  int max_elements = 0;
+  double fluid_area_initial = 0.0;
+  double fluid_area_final = 0.0;
+  std::string sensitivity_method;       // "none", "ddm" or "fdm"
+  std::vector<std::string> parameters;  // names differentiated
+  std::vector<double> parameter_values;
+};
+
+struct RunResult {
+  Histories responses;      // columns: recorder names
+  Histories sensitivities;  // columns: "d<recorder>/d<param>", empty without sensitivity
+  RunSummary summary;
+};
+
+// Runs the model. Throws ModelError (engine/io/model_io.h) when the model or the options are
+// invalid; a simulation failure (Newton divergence, a particle leaving the domain) does not
+// throw: it returns status kFailed with the step, time and reason and the partial histories.
+RunResult run(const pfem::v1::Model& model, const RunOptions& options);
+
+}  // namespace pfem

@@ -1,0 +1,44 @@
+#pragma once
+// MINI triangle (P1 + cubic bubble velocity, P1 pressure) in closed form: theory §3,
+// the paper's Appendix 1. Plain kernels: coordinates in, local matrices out.
+//
+// Local velocity dofs: (v1x v1y v2x v2y v3x v3y vbx vby), the bubble (node 4) last.
+// Local pressure dofs: (p1 p2 p3). Every matrix includes the out-of-plane thickness t.
+#include <Eigen/Core>
+#include <array>
+
+namespace pfem::fluid {
+
+using Vec3 = Eigen::Matrix<double, 3, 1>;
+using Vec8 = Eigen::Matrix<double, 8, 1>;
+using Mat8 = Eigen::Matrix<double, 8, 8>;
+using Mat83 = Eigen::Matrix<double, 8, 3>;
+
+// A is TWICE the signed area (53); c_a = y_b - y_c, d_a = x_c - x_b cyclically (54).
+struct TriangleGeometry {
+  double A = 0.0;
+  std::array<double, 3> c{}, d{};
+};
+
+TriangleGeometry triangle_geometry(const std::array<double, 3>& x, const std::array<double, 3>& y);
+
+struct FluidConstants {
+  double rho = 0.0;
+  double mu = 0.0;
+  double kappa = 0.0;
+};
+
+// The element's matrices at one geometry (theory (56)-(63)).
+struct MiniMatrices {
+  Mat8 M;    // consistent mass, rho * integral Nv^T Nv
+  Mat8 K;    // viscous, integral B^T D B with D = mu * deviatoric matrix
+  Mat83 G;   // integral B^T m Np
+  Vec8 F;    // body force rho * integral Nv^T b
+  Vec3 Mp;   // lumped pressure mass, A/(6 kappa) per corner
+};
+
+// Mass, viscous, gradient, body-force and pressure-mass matrices of one MINI triangle.
+void mini_matrices(const TriangleGeometry& g, const FluidConstants& f, double thickness,
+                   double bx, double by, MiniMatrices& out);
+
+}  // namespace pfem::fluid
