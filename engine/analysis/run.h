@@ -59,6 +59,10 @@ struct RunSummary {
   double wall_seconds = 0.0;
   double response_seconds = 0.0;
   double sensitivity_seconds = 0.0;
+  double remesh_seconds = 0.0;     // split of response_seconds
+  double assemble_seconds = 0.0;
+  double factorize_seconds = 0.0;
+  double solve_seconds = 0.0;
   long newton_iterations = 0;
   int particles = 0;
   int max_elements = 0;

@@ -4,7 +4,9 @@ namespace pfem::fluid {
 
 TriangleGeometry triangle_geometry(const std::array<double, 3>& x, const std::array<double, 3>& y) {
   TriangleGeometry g;
-  g.A = x[1] * y[2] - x[2] * y[1] + x[2] * y[0] - x[0] * y[2] + x[0] * y[1] - x[1] * y[0];
+  // (53) rearranged relative to corner 1: the same value, but its rounding depends on the
+  // element's size only, not on its distance from the origin.
+  g.A = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
   g.c = {y[1] - y[2], y[2] - y[0], y[0] - y[1]};
   g.d = {x[2] - x[1], x[0] - x[2], x[1] - x[0]};
   return g;

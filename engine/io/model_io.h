@@ -21,6 +21,8 @@ struct FieldError {
 class ModelError : public std::runtime_error {
  public:
   explicit ModelError(std::vector<FieldError> errors);
+  ModelError(std::string path, std::string message)
+      : ModelError(std::vector<FieldError>{{std::move(path), std::move(message)}}) {}
   const std::vector<FieldError>& errors() const { return errors_; }
 
  private:

@@ -1,0 +1,44 @@
+#pragma once
+// The engine's domain of one analysis, built from a pfem.v1.Model by engine/io/model_builder.
+#include <string>
+#include <vector>
+
+#include "engine/fluid/mini_element.h"
+#include "engine/solve/node_state.h"
+
+namespace pfem {
+
+struct Box {
+  double xmin = 0, ymin = 0, xmax = 0, ymax = 0;
+  bool contains(double x, double y) const { return x >= xmin && x <= xmax && y >= ymin && y <= ymax; }
+};
+
+struct RecorderSpec {
+  std::string name;
+  std::string quantity;  // see model.proto Recorder
+  int node = -1;         // node index for nodal quantities
+};
+
+struct ParameterSpec {
+  std::string name;
+  std::vector<std::string> targets;
+  double value = 0.0;
+};
+
+struct Problem {
+  fluid::FluidConstants fluid;
+  double thickness = 1.0;
+  double gx = 0.0, gy = -9.81;
+  double h = 0.0, alpha = 1.2;
+  double dt = 0.0, t_end = 0.0;
+  double newton_tolerance = 1e-10;
+  int newton_max_iterations = 20;
+  int record_every = 1;
+  int vtk_every = 10;
+  Box domain;
+  NodeState nodes;
+  std::vector<RecorderSpec> recorders;
+  std::vector<ParameterSpec> parameters;
+};
+
+}  // namespace pfem

@@ -1,0 +1,52 @@
+#include "engine/analysis/recorders.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace pfem {
+
+double fluid_area(const mesh::FluidMesh& mesh, const NodeState& nodes) {
+  double twice = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const double x1 = nodes.x[t[0]], y1 = nodes.y[t[0]];
+    twice += (nodes.x[t[1]] - x1) * (nodes.y[t[2]] - y1) - (nodes.x[t[2]] - x1) * (nodes.y[t[1]] - y1);
+  }
+  return 0.5 * twice;
+}
+
+namespace {
+double fluid_extreme(const NodeState& nodes, const mesh::FluidMesh& mesh, bool use_x) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (nodes.kind[i] == mesh::NodeKind::Fluid && mesh.in_mesh[i])
+      best = std::max(best, use_x ? nodes.x[i] : nodes.y[i]);
+  return best;
+}
+}  // namespace
+
+std::vector<double> sample_recorders(const Problem& problem, const NodeState& nodes,
+                                     const mesh::FluidMesh& mesh) {
+  std::vector<double> row;
+  row.reserve(problem.recorders.size());
+  for (const auto& r : problem.recorders) {
+    const int i = r.node;
+    double value = 0.0;
+    if (r.quantity == "ux") value = nodes.x[i] - nodes.x0[i];
+    else if (r.quantity == "uy") value = nodes.y[i] - nodes.y0[i];
+    else if (r.quantity == "vx") value = nodes.vx[i];
+    else if (r.quantity == "vy") value = nodes.vy[i];
+    else if (r.quantity == "p") value = nodes.p[i];
+    else if (r.quantity == "fluid_area") value = fluid_area(mesh, nodes);
+    else if (r.quantity == "front_x") value = fluid_extreme(nodes, mesh, true);
+    else if (r.quantity == "front_y") value = fluid_extreme(nodes, mesh, false);
+    else if (r.quantity == "max_speed") {
+      for (std::size_t k = 0; k < nodes.size(); ++k)
+        if (nodes.kind[k] == mesh::NodeKind::Fluid) value = std::max(value, std::hypot(nodes.vx[k], nodes.vy[k]));
+    }
+    row.push_back(value);
+  }
+  return row;
+}
+
+}  // namespace pfem

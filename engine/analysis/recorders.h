@@ -1,0 +1,17 @@
+#pragma once
+// Samples the recorders of a problem into one row of values.
+#include <vector>
+
+#include "engine/analysis/problem.h"
+#include "engine/mesh/remesher.h"
+
+namespace pfem {
+
+// Area of the fluid mesh at the nodes' current positions [m^2].
+double fluid_area(const mesh::FluidMesh& mesh, const NodeState& nodes);
+
+// One value per recorder, in the problem's order. mesh is the mesh of the step just taken.
+std::vector<double> sample_recorders(const Problem& problem, const NodeState& nodes,
+                                     const mesh::FluidMesh& mesh);
+
+}  // namespace pfem

@@ -1,0 +1,111 @@
+#include "engine/analysis/run.h"
+
+#include <chrono>
+#include <cmath>
+#include <set>
+
+#include "engine/analysis/simulation.h"
+#include "engine/io/model_builder.h"
+#include "engine/io/model_io.h"
+
+namespace pfem {
+
+namespace {
+
+// Options checked like model fields, with the flag's name as the path.
+void check_options(const RunOptions& o, const Problem& pb, std::vector<const ParameterSpec*>& chosen) {
+  std::vector<FieldError> errors;
+  if (o.t_end && !(std::isfinite(*o.t_end) && *o.t_end > 0)) errors.push_back({"t_end", "must be > 0"});
+  if (o.dt && !(std::isfinite(*o.dt) && *o.dt > 0)) errors.push_back({"dt", "must be > 0"});
+  if (o.vtk_every && *o.vtk_every < 1) errors.push_back({"vtk_every", "must be >= 1"});
+  if (!(std::isfinite(o.fdm_eps) && o.fdm_eps > 0 && o.fdm_eps < 0.1))
+    errors.push_back({"fdm_eps", "must be in (0, 0.1)"});
+  if (o.sensitivity != SensitivityMethod::kNone) {
+    std::set<std::string> seen;
+    for (const auto& name : o.params) {
+      const ParameterSpec* found = nullptr;
+      for (const auto& p : pb.parameters)
+        if (p.name == name) found = &p;
+      if (!found) errors.push_back({"params", "unknown parameter '" + name + "'"});
+      else if (seen.insert(name).second) chosen.push_back(found);
+    }
+    if (o.params.empty())
+      for (const auto& p : pb.parameters) chosen.push_back(&p);
+    if (chosen.empty() && errors.empty())
+      errors.push_back({"params", "the model names no parameter to differentiate"});
+  }
+  if (o.sensitivity == SensitivityMethod::kDdm)
+    errors.push_back({"sensitivity", "ddm is not available yet; use fdm"});
+  if (!errors.empty()) throw ModelError(std::move(errors));
+}
+
+const char* method_name(SensitivityMethod m) {
+  return m == SensitivityMethod::kDdm ? "ddm" : m == SensitivityMethod::kFdm ? "fdm" : "none";
+}
+
+// Central differences: 2 runs per parameter, step eps*|value| (eps when the value is 0).
+void finite_differences(const Problem& base, const RunOptions& o,
+                        const std::vector<const ParameterSpec*>& params, RunResult& result) {
+  const auto start = std::chrono::steady_clock::now();
+  RunOptions quiet;
+  quiet.cancel = o.cancel;
+  auto& sens = result.sensitivities;
+  sens.time = result.responses.time;
+  sens.rows.assign(sens.time.size(), {});
+  for (const auto& rec : result.responses.columns)
+    for (const auto* p : params) sens.columns.push_back("d" + rec + "/d" + p->name);
+  const std::size_t nrec = result.responses.columns.size();
+  std::vector<std::vector<std::vector<double>>> per_param;  // [param][row][recorder]
+  for (const auto* p : params) {
+    const double step = o.fdm_eps * (p->value != 0.0 ? std::abs(p->value) : 1.0);
+    Problem plus = base, minus = base;
+    set_parameter(plus, *p, p->value + step);
+    set_parameter(minus, *p, p->value - step);
+    const SimulationOutput a = simulate(plus, quiet), b = simulate(minus, quiet);
+    for (const auto* r : {&a, &b}) {
+      if (r->summary.status != RunStatus::kCompleted || r->responses.rows.size() != sens.time.size()) {
+        result.summary.status = r->summary.status == RunStatus::kCancelled ? RunStatus::kCancelled : RunStatus::kFailed;
+        result.summary.message = "finite-difference run for " + p->name + " stopped: " + r->summary.message;
+        sens.time.clear(), sens.rows.clear();
+        return;
+      }
+    }
+    std::vector<std::vector<double>> d(sens.time.size(), std::vector<double>(nrec));
+    for (std::size_t i = 0; i < sens.time.size(); ++i)
+      for (std::size_t j = 0; j < nrec; ++j)
+        d[i][j] = (a.responses.rows[i][j] - b.responses.rows[i][j]) / (2.0 * step);
+    per_param.push_back(std::move(d));
+  }
+  for (std::size_t i = 0; i < sens.time.size(); ++i)
+    for (std::size_t j = 0; j < nrec; ++j)
+      for (std::size_t k = 0; k < params.size(); ++k) sens.rows[i].push_back(per_param[k][i][j]);
+  result.summary.sensitivity_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
+  Problem problem = build_problem(model);
+  std::vector<const ParameterSpec*> params;
+  check_options(options, problem, params);
+  if (options.t_end) problem.t_end = *options.t_end;
+  if (options.dt) problem.dt = *options.dt;
+  if (problem.dt > problem.t_end) throw ModelError("dt", "must not exceed t_end");
+
+  RunResult result;
+  SimulationOutput sim = simulate(problem, options);
+  result.responses = std::move(sim.responses);
+  result.summary = sim.summary;
+  result.summary.sensitivity_method = method_name(options.sensitivity);
+  for (const auto* p : params) {
+    result.summary.parameters.push_back(p->name);
+    result.summary.parameter_values.push_back(p->value);
+  }
+  if (options.sensitivity == SensitivityMethod::kFdm && result.summary.status == RunStatus::kCompleted)
+    finite_differences(problem, options, params, result);
+  result.summary.wall_seconds = result.summary.response_seconds + result.summary.sensitivity_seconds;
+  return result;
+}
+
+}  // namespace pfem

@@ -1,0 +1,121 @@
+#include "engine/analysis/simulation.h"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "engine/analysis/recorders.h"
+#include "engine/io/vtk_writer.h"
+#include "engine/solve/fluid_step.h"
+
+namespace pfem {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// The first node (not a wall) outside the domain, or -1.
+int node_outside(const NodeState& nodes, const Box& domain) {
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (!nodes.is_fixed(i) && !domain.contains(nodes.x[i], nodes.y[i])) return static_cast<int>(i);
+  return -1;
+}
+}  // namespace
+
+SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
+  const auto start = Clock::now();
+  SimulationOutput out;
+  RunSummary& sum = out.summary;
+  sum.dt = problem.dt;
+  sum.t_end = problem.t_end;
+  const int total_steps = static_cast<int>(std::llround(problem.t_end / problem.dt));
+  for (const auto& r : problem.recorders) out.responses.columns.push_back(r.name);
+
+  NodeState nodes = problem.nodes;
+  for (const auto k : nodes.kind) sum.particles += k == mesh::NodeKind::Fluid;
+  const mesh::RemeshOptions remesh_options{problem.h, problem.alpha, problem.gx, problem.gy};
+  StepSettings settings;
+  settings.dt = problem.dt;
+  settings.tolerance = problem.newton_tolerance;
+  settings.max_iterations = problem.newton_max_iterations;
+  settings.fluid = problem.fluid;
+  settings.thickness = problem.thickness;
+  settings.gx = problem.gx;
+  settings.gy = problem.gy;
+  settings.threads = std::max(1, options.threads);
+  UnifiedStep step;
+
+  const int vtk_every = options.vtk_every.value_or(problem.vtk_every);
+  std::unique_ptr<VtkSeries> vtk;
+  if (!options.vtk_dir.empty()) vtk = std::make_unique<VtkSeries>(options.vtk_dir);
+
+  auto t0 = Clock::now();
+  mesh::FluidMesh mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
+  sum.remesh_seconds += since(t0);
+  sum.fluid_area_initial = sum.fluid_area_final = fluid_area(mesh, nodes);
+  out.responses.time.push_back(0.0);
+  out.responses.rows.push_back(sample_recorders(problem, nodes, mesh));
+  if (vtk) vtk->write(0.0, nodes, mesh);
+
+  for (int n = 1; n <= total_steps; ++n) {
+    const double time = n * problem.dt;
+    if (options.cancel && options.cancel->load()) {
+      sum.status = RunStatus::kCancelled;
+      sum.message = "cancelled before step " + std::to_string(n);
+      break;
+    }
+    try {
+      if (n > 1) {  // the step-1 mesh is the initial one
+        t0 = Clock::now();
+        mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
+        sum.remesh_seconds += since(t0);
+      }
+      const StepReport report = step.advance(mesh, settings, nodes, options.cancel);
+      sum.newton_iterations += report.iterations;
+      sum.assemble_seconds += report.assemble_seconds;
+      sum.factorize_seconds += report.factorize_seconds;
+      sum.solve_seconds += report.solve_seconds;
+      sum.max_elements = std::max<int>(sum.max_elements, static_cast<int>(mesh.triangles.size()));
+      sum.steps = n;
+      if (const int i = node_outside(nodes, problem.domain); i >= 0) {
+        std::ostringstream msg;
+        msg << "particle " << i << " left the domain at (" << nodes.x[i] << ", " << nodes.y[i] << ")";
+        throw StepFailure(msg.str());
+      }
+      if (n % problem.record_every == 0 || n == total_steps) {
+        out.responses.time.push_back(time);
+        out.responses.rows.push_back(sample_recorders(problem, nodes, mesh));
+      }
+      if (vtk && (n % vtk_every == 0 || n == total_steps)) vtk->write(time, nodes, mesh);
+      sum.fluid_area_final = fluid_area(mesh, nodes);
+      if (options.progress) {
+        Progress pr;
+        pr.step = n;
+        pr.total_steps = total_steps;
+        pr.time = time;
+        pr.t_end = problem.t_end;
+        pr.newton_iterations = report.iterations;
+        pr.elapsed_seconds = since(start);
+        pr.remaining_seconds = pr.elapsed_seconds / n * (total_steps - n);
+        options.progress(pr);
+      }
+    } catch (const StepCancelled&) {
+      sum.status = RunStatus::kCancelled;
+      sum.message = "cancelled during step " + std::to_string(n);
+      break;
+    } catch (const std::exception& e) {
+      sum.status = RunStatus::kFailed;
+      sum.failed_step = n;
+      sum.failed_time = time;
+      std::ostringstream msg;
+      msg << "step " << n << " (t = " << time << " s): " << e.what();
+      sum.message = msg.str();
+      break;
+    }
+  }
+  sum.wall_seconds = sum.response_seconds = since(start);
+  return out;
+}
+
+}  // namespace pfem

@@ -1,0 +1,116 @@
+// The `pfem` command: run and validate model files (design.md, "Contracts").
+//   pfem run MODEL.json --out DIR [--t-end T] [--dt DT] [--sensitivity none|ddm|fdm]
+//            [--params a,b] [--fdm-eps E] [--vtk-every N] [--vtk] [--threads N]
+//   pfem validate MODEL.json
+// Exit codes: 0 success, 1 simulation failed or cancelled, 2 invalid input or usage.
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "engine/analysis/run.h"
+#include "engine/cli/arguments.h"
+#include "engine/io/model_io.h"
+#include "engine/io/results_io.h"
+
+namespace {
+
+const char* kUsage =
+    "usage: pfem run MODEL.json --out DIR [--t-end T] [--dt DT] [--sensitivity none|ddm|fdm]\n"
+    "                [--params a,b] [--fdm-eps E] [--vtk] [--vtk-every N] [--threads N]\n"
+    "       pfem validate MODEL.json\n";
+
+int usage_error(const std::string& message) {
+  std::cerr << "pfem: " << message << "\n" << kUsage;
+  return 2;
+}
+
+int validate(const std::vector<std::string>& args) {
+  if (args.size() != 1) return usage_error("validate takes one model file");
+  try {
+    const auto model = pfem::read_model_file(args[0]);
+    const auto errors = pfem::validate_model(model);
+    for (const auto& e : errors) std::cerr << e.to_string() << "\n";
+    if (!errors.empty()) return 2;
+    std::cout << args[0] << ": valid\n";
+    return 0;
+  } catch (const pfem::ModelError& e) {
+    for (const auto& err : e.errors()) std::cerr << err.to_string() << "\n";
+    return 2;
+  }
+}
+
+int run(const std::vector<std::string>& args) {
+  pfem::cli::Arguments a(args);
+  pfem::RunOptions options;
+  std::string out_dir;
+  bool vtk = false;
+  try {
+    out_dir = a.take_string("--out").value_or("");
+    options.t_end = a.take_double("--t-end");
+    options.dt = a.take_double("--dt");
+    if (auto m = a.take_string("--sensitivity")) {
+      if (*m == "none") options.sensitivity = pfem::SensitivityMethod::kNone;
+      else if (*m == "ddm") options.sensitivity = pfem::SensitivityMethod::kDdm;
+      else if (*m == "fdm") options.sensitivity = pfem::SensitivityMethod::kFdm;
+      else return usage_error("--sensitivity must be none, ddm or fdm");
+    }
+    if (auto p = a.take_string("--params")) options.params = pfem::cli::split(*p, ',');
+    if (auto e = a.take_double("--fdm-eps")) options.fdm_eps = *e;
+    if (auto v = a.take_int("--vtk-every")) options.vtk_every = *v, vtk = true;
+    vtk = a.take_flag("--vtk") || vtk;
+    if (auto t = a.take_int("--threads")) options.threads = *t;
+    a.expect_done(1);
+  } catch (const std::invalid_argument& e) {
+    return usage_error(e.what());
+  }
+  if (out_dir.empty()) return usage_error("run needs --out DIR");
+  if (vtk) options.vtk_dir = out_dir + "/vtk";
+
+  const bool terminal = isatty(fileno(stderr));
+  if (terminal) {
+    options.progress = [](const pfem::Progress& p) {
+      std::fprintf(stderr, "\rstep %d/%d  t = %.4f s  newton %d  %.1f s elapsed, %.1f s left   ",
+                   p.step, p.total_steps, p.time, p.newton_iterations, p.elapsed_seconds, p.remaining_seconds);
+    };
+  }
+  try {
+    const auto model = pfem::read_model_file(a.positional(0));
+    const pfem::RunResult result = pfem::run(model, options);
+    if (terminal) std::fprintf(stderr, "\n");
+    pfem::write_results(result, out_dir);
+    const auto& s = result.summary;
+    if (s.status != pfem::RunStatus::kCompleted) {
+      std::cerr << "pfem: " << s.message << " (partial results in " << out_dir << ")\n";
+      return 1;
+    }
+    std::printf("%d steps, %d particles, up to %d elements, %ld Newton iterations, %.2f s (response %.2f s, sensitivity %.2f s)\n",
+                s.steps, s.particles, s.max_elements, s.newton_iterations, s.wall_seconds,
+                s.response_seconds, s.sensitivity_seconds);
+    std::printf("results in %s\n", out_dir.c_str());
+    return 0;
+  } catch (const pfem::ModelError& e) {
+    for (const auto& err : e.errors()) std::cerr << err.to_string() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "pfem: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) return usage_error("missing command");
+  const std::string command = argv[1];
+  const std::vector<std::string> args(argv + 2, argv + argc);
+  if (command == "run") return run(args);
+  if (command == "validate") return validate(args);
+  if (command == "--help" || command == "-h") {
+    std::cout << kUsage;
+    return 0;
+  }
+  return usage_error("unknown command '" + command + "'");
+}

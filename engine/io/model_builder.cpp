@@ -1,0 +1,176 @@
+#include "engine/io/model_builder.h"
+
+#include <cmath>
+#include <limits>
+
+#include "engine/io/geometry_bounds.h"
+#include "engine/io/model_io.h"
+
+namespace pfem {
+
+namespace {
+
+using mesh::NodeKind;
+
+struct Segment {
+  double ax, ay, bx, by;
+};
+
+double distance_to_segment(double px, double py, const Segment& s) {
+  const double dx = s.bx - s.ax, dy = s.by - s.ay;
+  const double len2 = dx * dx + dy * dy;
+  double t = len2 > 0 ? ((px - s.ax) * dx + (py - s.ay) * dy) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return std::hypot(px - s.ax - t * dx, py - s.ay - t * dy);
+}
+
+// Wall nodes at spacing <= h along each polyline; corners shared by two walls appear once.
+std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState& nodes) {
+  std::vector<Segment> segments;
+  const double merge = 1e-6 * h;
+  auto add_unique = [&](double x, double y) {
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (nodes.kind[i] == NodeKind::Wall && std::hypot(nodes.x[i] - x, nodes.y[i] - y) < merge) return;
+    nodes.add(x, y, NodeKind::Wall);
+  };
+  for (const auto& w : model.walls()) {
+    const int n = w.points_size();
+    const int count = w.closed() ? n : n - 1;
+    for (int k = 0; k < count; ++k) {
+      const auto& a = w.points(k);
+      const auto& b = w.points((k + 1) % n);
+      segments.push_back({a.x(), a.y(), b.x(), b.y()});
+      const double len = std::hypot(b.x() - a.x(), b.y() - a.y());
+      const int pieces = std::max(1, static_cast<int>(std::ceil(len / h - 1e-9)));
+      for (int j = 0; j <= pieces; ++j) {
+        const double t = static_cast<double>(j) / pieces;
+        add_unique(a.x() + t * (b.x() - a.x()), a.y() + t * (b.y() - a.y()));
+      }
+    }
+  }
+  return segments;
+}
+
+bool inside_polygon(const pfem::v1::Polygon& poly, double x, double y, double tol) {
+  // Points on an edge (within tol) count as inside, so that grid points on the boundary are kept.
+  const int n = poly.points_size();
+  bool inside = false;
+  for (int i = 0, j = n - 1; i < n; j = i++) {
+    const auto& a = poly.points(i);
+    const auto& b = poly.points(j);
+    if (distance_to_segment(x, y, {a.x(), a.y(), b.x(), b.y()}) <= tol) return true;
+    if ((a.y() > y) != (b.y() > y) && x < (b.x() - a.x()) * (y - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+  }
+  return inside;
+}
+
+// Particles on a grid of spacing h anchored at the region's lower-left corner; those closer
+// than h/2 to a wall or to a particle of an earlier region are left out (walls already
+// bound the fluid; overlapping regions do not double the water).
+void add_region(const pfem::v1::FluidRegion& region, double h, const std::vector<Segment>& walls,
+                NodeState& nodes, std::size_t first_particle) {
+  const std::size_t earlier_end = nodes.size();
+  Bounds b;
+  if (region.has_rectangle()) {
+    b = {region.rectangle().min().x(), region.rectangle().min().y(), region.rectangle().max().x(),
+         region.rectangle().max().y()};
+  } else {
+    b = polygon_bounds(region.polygon());
+  }
+  const double tol = 1e-9 * h;
+  const int nx = static_cast<int>(std::floor((b.xmax - b.xmin) / h + 1e-9));
+  const int ny = static_cast<int>(std::floor((b.ymax - b.ymin) / h + 1e-9));
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      const double x = b.xmin + i * h, y = b.ymin + j * h;
+      if (region.has_polygon() && !inside_polygon(region.polygon(), x, y, tol)) continue;
+      bool clear = true;
+      for (const auto& s : walls)
+        if (distance_to_segment(x, y, s) < 0.5 * h) { clear = false; break; }
+      for (std::size_t k = first_particle; clear && k < earlier_end; ++k)
+        if (std::hypot(nodes.x[k] - x, nodes.y[k] - y) < 0.5 * h) clear = false;
+      if (clear) nodes.add(x, y, NodeKind::Fluid, region.velocity().x(), region.velocity().y());
+    }
+  }
+}
+
+int nearest_node(const NodeState& nodes, double x, double y) {
+  int best = -1;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const double d = std::hypot(nodes.x[i] - x, nodes.y[i] - y);
+    if (d < best_d) best_d = d, best = static_cast<int>(i);
+  }
+  return best;
+}
+
+}  // namespace
+
+void set_parameter(Problem& problem, const ParameterSpec& parameter, double value) {
+  for (const auto& t : parameter.targets) {
+    if (t == "fluid.rho") problem.fluid.rho = value;
+    else if (t == "fluid.mu") problem.fluid.mu = value;
+    else if (t == "fluid.kappa") problem.fluid.kappa = value;
+  }
+}
+
+Problem build_problem(const pfem::v1::Model& model) {
+  if (auto errors = validate_model(model); !errors.empty()) throw ModelError(std::move(errors));
+  Problem pb;
+  pb.fluid = {model.fluid().rho(), model.fluid().mu(), model.fluid().kappa()};
+  pb.thickness = model.has_thickness() ? model.thickness() : 1.0;
+  if (model.has_gravity()) pb.gx = model.gravity().x(), pb.gy = model.gravity().y();
+  pb.h = model.mesh().h();
+  pb.alpha = model.mesh().has_alpha() ? model.mesh().alpha() : 1.2;
+  const auto& a = model.analysis();
+  pb.dt = a.dt();
+  pb.t_end = a.t_end();
+  if (a.has_newton_tolerance()) pb.newton_tolerance = a.newton_tolerance();
+  if (a.has_newton_max_iterations()) pb.newton_max_iterations = a.newton_max_iterations();
+  if (a.has_record_every()) pb.record_every = a.record_every();
+  if (a.has_vtk_every()) pb.vtk_every = a.vtk_every();
+
+  const Bounds wb = walls_bounds(model);
+  if (model.has_domain()) {
+    const auto& d = model.domain();
+    pb.domain = {d.min().x(), d.min().y(), d.max().x(), d.max().y()};
+  } else {
+    const double grow = 0.5 * wb.size();
+    pb.domain = {wb.xmin - grow, wb.ymin - grow, wb.xmax + grow, wb.ymax + grow};
+  }
+
+  const auto segments = add_walls(model, pb.h, pb.nodes);
+  const std::size_t first_particle = pb.nodes.size();
+  std::vector<FieldError> errors;
+  for (int i = 0; i < model.fluid_regions_size(); ++i) {
+    const std::size_t before = pb.nodes.size();
+    add_region(model.fluid_regions(i), pb.h, segments, pb.nodes, first_particle);
+    if (pb.nodes.size() == before)
+      errors.push_back({"fluid_regions[" + std::to_string(i) + "]", "holds no particle clear of the walls at spacing mesh.h"});
+  }
+  for (std::size_t i = first_particle; i < pb.nodes.size(); ++i) {
+    if (!pb.domain.contains(pb.nodes.x[i], pb.nodes.y[i])) {
+      errors.push_back({"domain", "does not contain every fluid particle"});
+      break;
+    }
+  }
+  if (!errors.empty()) throw ModelError(std::move(errors));
+
+  for (const auto& r : model.recorders()) {
+    RecorderSpec spec{r.name(), r.quantity(), -1};
+    if (r.has_point()) spec.node = nearest_node(pb.nodes, r.point().x(), r.point().y());
+    pb.recorders.push_back(spec);
+  }
+  for (const auto& p : model.parameters()) {
+    ParameterSpec spec{p.name(), {p.targets().begin(), p.targets().end()}, 0.0};
+    const std::string& t = spec.targets.front();
+    spec.value = t == "fluid.rho" ? pb.fluid.rho : t == "fluid.mu" ? pb.fluid.mu : pb.fluid.kappa;
+    if (p.has_value()) spec.value = p.value();
+    set_parameter(pb, spec, spec.value);
+    pb.parameters.push_back(spec);
+  }
+  return pb;
+}
+
+}  // namespace pfem

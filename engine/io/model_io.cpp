@@ -1,0 +1,53 @@
+#include "engine/io/model_io.h"
+
+#include <google/protobuf/util/json_util.h>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "engine/io/model_checks.h"
+
+namespace pfem {
+
+namespace {
+std::string join_errors(const std::vector<FieldError>& errors) {
+  std::string out;
+  for (const auto& e : errors) {
+    if (!out.empty()) out += '\n';
+    out += e.to_string();
+  }
+  return out;
+}
+}  // namespace
+
+ModelError::ModelError(std::vector<FieldError> errors)
+    : std::runtime_error(join_errors(errors)), errors_(std::move(errors)) {}
+
+pfem::v1::Model parse_model_json(std::string_view json) {
+  pfem::v1::Model model;
+  google::protobuf::util::JsonParseOptions options;
+  options.ignore_unknown_fields = false;
+  const auto status = google::protobuf::util::JsonStringToMessage(
+      google::protobuf::StringPiece(json.data(), json.size()), &model, options);
+  if (!status.ok()) {
+    throw ModelError("model", "invalid JSON: " + std::string(status.message()));
+  }
+  return model;
+}
+
+pfem::v1::Model read_model_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw ModelError(path.string(), "cannot open the model file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_model_json(buffer.str());
+}
+
+std::vector<FieldError> validate_model(const pfem::v1::Model& model) {
+  ModelChecker checker(model);
+  return checker.run();
+}
+
+}  // namespace pfem

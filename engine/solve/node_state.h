@@ -1,0 +1,28 @@
+#pragma once
+// The nodal state every part of a step reads and writes: fluid particles, wall nodes and
+// (later) structure nodes in one set of arrays. Everything lives on nodes so that it survives
+// remeshing (theory §6, step 4).
+#include <cstddef>
+#include <vector>
+
+#include "engine/mesh/remesher.h"
+
+namespace pfem {
+
+struct NodeState {
+  std::vector<double> x0, y0;  // positions at t = 0 [m]
+  std::vector<double> x, y;    // current positions [m]
+  std::vector<double> vx, vy;  // velocities [m/s]
+  std::vector<double> p;       // pressures [Pa]
+  std::vector<mesh::NodeKind> kind;
+
+  std::size_t size() const { return x.size(); }
+  int add(double px, double py, mesh::NodeKind k, double pvx = 0.0, double pvy = 0.0) {
+    x0.push_back(px), y0.push_back(py), x.push_back(px), y.push_back(py);
+    vx.push_back(pvx), vy.push_back(pvy), p.push_back(0.0), kind.push_back(k);
+    return static_cast<int>(x.size()) - 1;
+  }
+  bool is_fixed(std::size_t i) const { return kind[i] == mesh::NodeKind::Wall; }
+};
+
+}  // namespace pfem

@@ -1,0 +1,30 @@
+#pragma once
+// Linear elastic uniaxial material: stress = E * strain.
+#include "engine/structure/uniaxial_material.h"
+
+namespace pfem::structure {
+
+class ElasticMaterial final : public UniaxialMaterial {
+ public:
+  // Throws std::invalid_argument unless E > 0 (field "e").
+  explicit ElasticMaterial(double E);
+
+  void set_trial_strain(double strain) override { strain_ = strain; }
+  double strain() const override { return strain_; }
+  double stress() const override { return E_ * strain_; }
+  double tangent() const override { return E_; }
+  double initial_tangent() const override { return E_; }
+
+  void commit() override { committed_strain_ = strain_; }
+  void revert_to_last_commit() override { strain_ = committed_strain_; }
+  std::unique_ptr<UniaxialMaterial> clone() const override;
+
+  double youngs_modulus() const { return E_; }
+
+ private:
+  double E_;
+  double strain_ = 0.0;
+  double committed_strain_ = 0.0;
+};
+
+}  // namespace pfem::structure

@@ -1,0 +1,27 @@
+#include "engine/structure/elastic_section.h"
+
+#include "engine/structure/validation.h"
+
+namespace pfem::structure {
+
+void validate(const ElasticSectionProperties& p) {
+  require_positive(p.E, "e");
+  require_positive(p.A, "a");
+  require_positive(p.I, "i");
+}
+
+ElasticSection::ElasticSection(const ElasticSectionProperties& p) : props_(p) {
+  validate(p);
+  k_ << p.E * p.A, 0.0, 0.0, p.E * p.I;
+}
+
+void ElasticSection::set_trial_deformation(const Vec2& e) {
+  e_ = e;
+  s_ = k_ * e;
+}
+
+std::unique_ptr<Section> ElasticSection::clone() const {
+  return std::make_unique<ElasticSection>(*this);
+}
+
+}  // namespace pfem::structure

@@ -1,0 +1,451 @@
+// Unit tests of the PFEM remesher (theory §6, step 1): Delaunay + per-face alpha test,
+// removal of triangles without fluid, free-surface detection, input validation.
+#include "engine/mesh/remesher.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using pfem::mesh::FluidMesh;
+using pfem::mesh::NodeKind;
+using pfem::mesh::RemeshOptions;
+using Triangle = std::array<std::int32_t, 3>;
+
+struct Nodes {
+  std::vector<double> x, y;
+  std::vector<NodeKind> kind;
+
+  std::int32_t add(double px, double py, NodeKind k) {
+    x.push_back(px);
+    y.push_back(py);
+    kind.push_back(k);
+    return static_cast<std::int32_t>(x.size() - 1);
+  }
+  FluidMesh remesh(double h, double alpha) const {
+    return pfem::mesh::remesh(x, y, kind, RemeshOptions{h, alpha});
+  }
+};
+
+double signed_area(const Nodes& n, const Triangle& t) {
+  const double ux = n.x[t[1]] - n.x[t[0]], uy = n.y[t[1]] - n.y[t[0]];
+  const double vx = n.x[t[2]] - n.x[t[0]], vy = n.y[t[2]] - n.y[t[0]];
+  return 0.5 * (ux * vy - uy * vx);
+}
+
+// Circumcentre by the textbook formula (independent of the remesher's a*b*c/(4A) form).
+std::array<double, 3> circumcircle(double ax, double ay, double bx, double by, double cx,
+                                   double cy) {
+  const double bxr = bx - ax, byr = by - ay, cxr = cx - ax, cyr = cy - ay;
+  const double d = 2.0 * (bxr * cyr - byr * cxr);
+  const double b2 = bxr * bxr + byr * byr, c2 = cxr * cxr + cyr * cyr;
+  const double ux = (cyr * b2 - byr * c2) / d, uy = (bxr * c2 - cxr * b2) / d;
+  return {ax + ux, ay + uy, std::sqrt(ux * ux + uy * uy)};
+}
+
+double circumradius(const Nodes& n, const Triangle& t) {
+  return circumcircle(n.x[t[0]], n.y[t[0]], n.x[t[1]], n.y[t[1]], n.x[t[2]], n.y[t[2]])[2];
+}
+
+double total_area(const Nodes& n, const FluidMesh& m) {
+  double a = 0.0;
+  for (const auto& t : m.triangles) a += signed_area(n, t);
+  return a;
+}
+
+// Free surface recomputed from the triangle list: fluid ends of edges used exactly once.
+std::vector<std::uint8_t> free_surface_from_triangles(const Nodes& n, const FluidMesh& m) {
+  std::map<std::pair<std::int32_t, std::int32_t>, int> uses;
+  for (const auto& t : m.triangles) {
+    for (int e = 0; e < 3; ++e) {
+      const std::int32_t a = t[e], b = t[(e + 1) % 3];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  std::vector<std::uint8_t> fs(n.x.size(), 0);
+  for (const auto& [edge, count] : uses) {
+    if (count != 1) continue;
+    for (const std::int32_t v : {edge.first, edge.second}) {
+      if (n.kind[v] == NodeKind::Fluid) fs[v] = 1;
+    }
+  }
+  return fs;
+}
+
+std::vector<std::uint8_t> in_mesh_from_triangles(const Nodes& n, const FluidMesh& m) {
+  std::vector<std::uint8_t> in(n.x.size(), 0);
+  for (const auto& t : m.triangles) in[t[0]] = in[t[1]] = in[t[2]] = 1;
+  return in;
+}
+
+// Checks every invariant that holds for any input: sizes, CCW, alpha test, fluid corner,
+// in_mesh and free_surface consistent with the triangle list.
+void expect_consistent(const Nodes& n, const FluidMesh& m, double h, double alpha) {
+  ASSERT_EQ(m.in_mesh.size(), n.x.size());
+  ASSERT_EQ(m.free_surface.size(), n.x.size());
+  for (const auto& t : m.triangles) {
+    for (const auto v : t) ASSERT_TRUE(v >= 0 && static_cast<std::size_t>(v) < n.x.size());
+    EXPECT_GT(signed_area(n, t), 0.0) << "triangle not counter-clockwise";
+    EXPECT_LE(circumradius(n, t), alpha * h * (1.0 + 1e-12));
+    EXPECT_TRUE(n.kind[t[0]] == NodeKind::Fluid || n.kind[t[1]] == NodeKind::Fluid ||
+                n.kind[t[2]] == NodeKind::Fluid);
+  }
+  EXPECT_EQ(m.in_mesh, in_mesh_from_triangles(n, m));
+  EXPECT_EQ(m.free_surface, free_surface_from_triangles(n, m));
+}
+
+Nodes fluid_grid(int nx, int ny, double h, double x0 = 0.0, double y0 = 0.0) {
+  Nodes n;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) n.add(x0 + i * h, y0 + j * h, NodeKind::Fluid);
+  }
+  return n;
+}
+
+TEST(Remesher, RegularGridKeepsEveryTriangle) {
+  const int nx = 13, ny = 7;
+  const double h = 0.05;
+  const Nodes n = fluid_grid(nx, ny, h, 1.0, -2.0);
+  const FluidMesh m = n.remesh(h, 1.2);
+
+  ASSERT_EQ(m.triangles.size(), static_cast<std::size_t>(2 * (nx - 1) * (ny - 1)));
+  const double expected = (nx - 1) * (ny - 1) * h * h;
+  EXPECT_NEAR(total_area(n, m), expected, 1e-12 * expected);
+  for (const auto& t : m.triangles) {
+    EXPECT_NEAR(signed_area(n, t), 0.5 * h * h, 1e-12 * h * h);  // CCW, half a cell
+  }
+  EXPECT_EQ(std::count(m.in_mesh.begin(), m.in_mesh.end(), 1), nx * ny);
+  // A block of fluid alone: its whole outline is free surface, the interior is not.
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const bool outline = i == 0 || j == 0 || i == nx - 1 || j == ny - 1;
+      EXPECT_EQ(m.free_surface[j * nx + i], outline ? 1 : 0) << "node " << i << "," << j;
+    }
+  }
+  expect_consistent(n, m, h, 1.2);
+}
+
+TEST(Remesher, SparseOutlierIsLeftOut) {
+  const int nx = 8, ny = 6;
+  const double h = 0.1;
+  Nodes n = fluid_grid(nx, ny, h);
+  // 3h to the right of the block's right edge, level with its middle row.
+  const std::int32_t outlier = n.add((nx - 1) * h + 3.0 * h, 2.0 * h, NodeKind::Fluid);
+  const FluidMesh m = n.remesh(h, 1.2);
+
+  EXPECT_EQ(m.in_mesh[outlier], 0);
+  EXPECT_EQ(m.free_surface[outlier], 0);
+  for (const auto& t : m.triangles) {
+    EXPECT_TRUE(t[0] != outlier && t[1] != outlier && t[2] != outlier);
+  }
+  EXPECT_EQ(m.triangles.size(), static_cast<std::size_t>(2 * (nx - 1) * (ny - 1)));
+  const double expected = (nx - 1) * (ny - 1) * h * h;
+  EXPECT_NEAR(total_area(n, m), expected, 1e-12 * expected);
+  expect_consistent(n, m, h, 1.2);
+}
+
+// Open box: wall nodes on y = 0 (x = 0..W), x = 0 and x = W (y = h..H + 2h); fluid
+// particles at x = h..W-h, y = h..H. Returns the indices of the top fluid row and of the
+// rightmost fluid column.
+struct Box {
+  Nodes nodes;
+  std::set<std::int32_t> top_row, right_column;
+};
+
+Box fluid_in_box(int cols, int rows, double h, bool right_wall) {
+  Box b;
+  const int wall_top = rows + 2;  // the side walls stand two spacings above the water
+  for (int i = 0; i <= cols + 1; ++i) b.nodes.add(i * h, 0.0, NodeKind::Wall);
+  for (int j = 1; j <= wall_top; ++j) b.nodes.add(0.0, j * h, NodeKind::Wall);
+  if (right_wall) {
+    for (int j = 1; j <= wall_top; ++j) b.nodes.add((cols + 1) * h, j * h, NodeKind::Wall);
+  }
+  for (int j = 1; j <= rows; ++j) {
+    for (int i = 1; i <= cols; ++i) {
+      const std::int32_t v = b.nodes.add(i * h, j * h, NodeKind::Fluid);
+      if (j == rows) b.top_row.insert(v);
+      if (i == cols) b.right_column.insert(v);
+    }
+  }
+  return b;
+}
+
+std::set<std::int32_t> flagged(const std::vector<std::uint8_t>& flags) {
+  std::set<std::int32_t> s;
+  for (std::size_t i = 0; i < flags.size(); ++i) {
+    if (flags[i]) s.insert(static_cast<std::int32_t>(i));
+  }
+  return s;
+}
+
+TEST(Remesher, FreeSurfaceOfFluidInOpenBoxIsTheTopRow) {
+  const double h = 0.02;
+  const int cols = 9, rows = 5;
+  const Box box = fluid_in_box(cols, rows, h, /*right_wall=*/true);
+  const FluidMesh m = box.nodes.remesh(h, 1.2);
+
+  EXPECT_EQ(flagged(m.free_surface), box.top_row);
+  for (std::size_t i = 0; i < box.nodes.x.size(); ++i) {
+    if (box.nodes.kind[i] == NodeKind::Fluid) {
+      EXPECT_EQ(m.in_mesh[i], 1) << "fluid node " << i;
+    }
+  }
+  // The cells between the walls up to the water line are meshed, except perhaps the
+  // wall-only halves of the two bottom corner cells (whichever diagonal CGAL picks there);
+  // above it the two half-cells (wall, wall, top corner particle) with radius 0.71h are kept.
+  const double water = (cols + 1) * rows * h * h;
+  const double area = total_area(box.nodes, m);
+  EXPECT_GE(area, water - 1e-12);
+  EXPECT_LE(area, water + 1.0 * h * h + 1e-12);
+  expect_consistent(box.nodes, m, h, 1.2);
+}
+
+TEST(Remesher, FreeSurfaceWithoutRightWallIncludesTheExposedColumn) {
+  const double h = 0.02;
+  const int cols = 9, rows = 5;
+  const Box box = fluid_in_box(cols, rows, h, /*right_wall=*/false);
+  const FluidMesh m = box.nodes.remesh(h, 1.2);
+
+  std::set<std::int32_t> expected = box.top_row;
+  expected.insert(box.right_column.begin(), box.right_column.end());
+  EXPECT_EQ(expected.size(), static_cast<std::size_t>(cols + rows - 1));
+  EXPECT_EQ(flagged(m.free_surface), expected);
+  expect_consistent(box.nodes, m, h, 1.2);
+}
+
+TEST(Remesher, TrianglesOfOnlyWallNodesAreRemoved) {
+  // A 4 x 3 grid: columns x = 0, h, 2h are walls, column x = 3h is fluid. Only the cells
+  // of the last column have a fluid corner (two, whichever diagonal CGAL picks).
+  const double h = 1.0;
+  Nodes n;
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 4; ++i) n.add(i * h, j * h, i == 3 ? NodeKind::Fluid : NodeKind::Wall);
+  }
+  const FluidMesh m = n.remesh(h, 1.2);
+  EXPECT_EQ(m.triangles.size(), 4u);
+  EXPECT_NEAR(total_area(n, m), 2.0 * h * h, 1e-12);
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(m.in_mesh[j * 4 + i], i >= 2 ? 1 : 0);
+  }
+  expect_consistent(n, m, h, 1.2);
+
+  // The same grid with walls only: nothing at all.
+  Nodes walls = n;
+  std::fill(walls.kind.begin(), walls.kind.end(), NodeKind::Structure);
+  const FluidMesh none = walls.remesh(h, 1.2);
+  EXPECT_TRUE(none.triangles.empty());
+  EXPECT_EQ(std::count(none.in_mesh.begin(), none.in_mesh.end(), 1), 0);
+}
+
+TEST(Remesher, CollinearNodesGiveNoTriangles) {
+  Nodes wall_line;
+  for (int i = 0; i < 20; ++i) wall_line.add(0.1 * i, 0.05 * i, NodeKind::Wall);
+  const FluidMesh m = wall_line.remesh(0.1, 1.2);
+  EXPECT_TRUE(m.triangles.empty());
+  EXPECT_EQ(std::count(m.in_mesh.begin(), m.in_mesh.end(), 1), 0);
+
+  Nodes fluid_line = wall_line;
+  std::fill(fluid_line.kind.begin(), fluid_line.kind.end(), NodeKind::Fluid);
+  const FluidMesh f = fluid_line.remesh(0.1, 1.2);
+  EXPECT_TRUE(f.triangles.empty());
+  EXPECT_EQ(std::count(f.free_surface.begin(), f.free_surface.end(), 1), 0);
+}
+
+TEST(Remesher, TinyInputs) {
+  Nodes n;
+  EXPECT_TRUE(n.remesh(1.0, 1.2).triangles.empty());
+  n.add(0.0, 0.0, NodeKind::Fluid);
+  n.add(1.0, 0.0, NodeKind::Fluid);
+  const FluidMesh two = n.remesh(1.0, 1.2);
+  EXPECT_TRUE(two.triangles.empty());
+  EXPECT_EQ(two.in_mesh, (std::vector<std::uint8_t>{0, 0}));
+  // Given clockwise, returned counter-clockwise.
+  n.add(0.0, -1.0, NodeKind::Fluid);
+  const FluidMesh three = n.remesh(1.0, 1.2);
+  ASSERT_EQ(three.triangles.size(), 1u);
+  EXPECT_NEAR(signed_area(n, three.triangles[0]), 0.5, 1e-15);
+  EXPECT_EQ(three.free_surface, (std::vector<std::uint8_t>{1, 1, 1}));
+  // Circumradius sqrt(2)/2 = 0.7071: kept at alpha*h = 0.71, dropped at 0.70.
+  EXPECT_EQ(n.remesh(1.0, 0.71).triangles.size(), 1u);
+  EXPECT_EQ(n.remesh(1.0, 0.70).triangles.size(), 0u);
+}
+
+TEST(Remesher, CoincidentPointsKeepTheLowestIndex) {
+  const int nx = 5, ny = 4;
+  const double h = 0.1;
+  const std::size_t cells = 2 * (nx - 1) * (ny - 1);
+
+  // A later copy of grid node 7 (interior): the copy is left out.
+  Nodes later = fluid_grid(nx, ny, h);
+  const std::int32_t copy = later.add(later.x[7], later.y[7], NodeKind::Fluid);
+  const FluidMesh a = later.remesh(h, 1.2);
+  EXPECT_EQ(a.triangles.size(), cells);
+  EXPECT_EQ(a.in_mesh[7], 1);
+  EXPECT_EQ(a.in_mesh[copy], 0);
+  EXPECT_EQ(a.free_surface[copy], 0);
+  expect_consistent(later, a, h, 1.2);
+
+  // The copy placed first: now the grid's own node (index 8) is the later duplicate.
+  Nodes first;
+  first.add(later.x[7], later.y[7], NodeKind::Fluid);
+  const Nodes grid = fluid_grid(nx, ny, h);
+  for (std::size_t i = 0; i < grid.x.size(); ++i) first.add(grid.x[i], grid.y[i], grid.kind[i]);
+  const FluidMesh b = first.remesh(h, 1.2);
+  EXPECT_EQ(b.triangles.size(), cells);
+  EXPECT_EQ(b.in_mesh[0], 1);
+  EXPECT_EQ(b.in_mesh[8], 0);
+  EXPECT_EQ(std::count(b.in_mesh.begin(), b.in_mesh.end(), 1), nx * ny);
+  expect_consistent(first, b, h, 1.2);
+
+  // Three copies of a corner, -0.0 and 0.0 included: one survives, the lowest index.
+  Nodes zeros = fluid_grid(nx, ny, h);  // node 0 is (0, 0)
+  const std::int32_t z1 = zeros.add(-0.0, 0.0, NodeKind::Fluid);
+  const std::int32_t z2 = zeros.add(0.0, -0.0, NodeKind::Fluid);
+  const FluidMesh c = zeros.remesh(h, 1.2);
+  EXPECT_EQ(c.in_mesh[0], 1);
+  EXPECT_EQ(c.free_surface[0], 1);
+  EXPECT_EQ(c.in_mesh[z1], 0);
+  EXPECT_EQ(c.in_mesh[z2], 0);
+  EXPECT_EQ(c.triangles.size(), cells);
+}
+
+TEST(Remesher, InvalidInputThrows) {
+  const std::vector<double> x{0.0, 1.0, 0.0}, y{0.0, 0.0, 1.0}, y_short{0.0, 0.0};
+  const std::vector<NodeKind> k(3, NodeKind::Fluid), k_short(2, NodeKind::Fluid);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  using pfem::mesh::remesh;
+
+  EXPECT_THROW(remesh(x, y_short, k, {1.0, 1.2}), std::invalid_argument);
+  EXPECT_THROW(remesh(x, y, k_short, {1.0, 1.2}), std::invalid_argument);
+  EXPECT_THROW(remesh(x, y, k, {0.0, 1.2}), std::invalid_argument);
+  EXPECT_THROW(remesh(x, y, k, {-1.0, 1.2}), std::invalid_argument);
+  EXPECT_THROW(remesh(x, y, k, {nan, 1.2}), std::invalid_argument);
+  EXPECT_THROW(remesh(x, y, k, {1.0, 0.0}), std::invalid_argument);
+  EXPECT_THROW(remesh(x, y, k, {1.0, -1.2}), std::invalid_argument);
+  EXPECT_THROW(remesh(x, y, k, {1.0, nan}), std::invalid_argument);
+  EXPECT_THROW(remesh(x, y, k, RemeshOptions{}), std::invalid_argument);  // h defaults to 0
+  for (const double bad : {nan, inf, -inf}) {
+    std::vector<double> xb = x, yb = y;
+    xb[1] = bad;
+    EXPECT_THROW(remesh(xb, y, k, {1.0, 1.2}), std::invalid_argument);
+    yb[2] = bad;
+    EXPECT_THROW(remesh(x, yb, k, {1.0, 1.2}), std::invalid_argument);
+  }
+  try {
+    remesh(x, y_short, k, {1.0, 1.2});
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("same size"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(remesh(x, y, k, {1.0, 1.2}));
+}
+
+// Random cloud: the kept set must equal, triangle for triangle, the brute-force set of
+// Delaunay triangles (empty circumcircle) with circumradius <= alpha*h and a fluid corner.
+TEST(Remesher, RandomCloudMatchesBruteForce) {
+  std::mt19937 rng(20240611);
+  std::uniform_real_distribution<double> coord(0.0, 1.0), u(0.0, 1.0);
+  const int count = 400;
+  const double h = 1.0 / std::sqrt(static_cast<double>(count)), alpha = 1.3;
+  Nodes n;
+  for (int i = 0; i < count; ++i) {
+    const double r = u(rng);
+    const NodeKind k = r < 0.2 ? NodeKind::Wall : (r < 0.25 ? NodeKind::Structure : NodeKind::Fluid);
+    n.add(coord(rng), coord(rng), k);
+  }
+  const FluidMesh m = n.remesh(h, alpha);
+  expect_consistent(n, m, h, alpha);
+
+  // Candidate triples: all pairwise distances <= 2*alpha*h (necessary for R <= alpha*h).
+  const double reach2 = 4.0 * alpha * alpha * h * h;
+  std::vector<std::vector<int>> near(count);
+  for (int i = 0; i < count; ++i) {
+    for (int j = i + 1; j < count; ++j) {
+      const double dx = n.x[i] - n.x[j], dy = n.y[i] - n.y[j];
+      if (dx * dx + dy * dy <= reach2) near[i].push_back(j);
+    }
+  }
+  std::set<Triangle> expected;
+  double expected_area = 0.0;
+  int borderline = 0;
+  for (int i = 0; i < count; ++i) {
+    for (const int j : near[i]) {
+      for (const int k : near[i]) {
+        if (k <= j || std::find(near[j].begin(), near[j].end(), k) == near[j].end()) continue;
+        if (n.kind[i] != NodeKind::Fluid && n.kind[j] != NodeKind::Fluid &&
+            n.kind[k] != NodeKind::Fluid) {
+          continue;
+        }
+        const auto [cx, cy, r] = circumcircle(n.x[i], n.y[i], n.x[j], n.y[j], n.x[k], n.y[k]);
+        if (!(r <= alpha * h)) continue;
+        if (std::abs(r - alpha * h) < 1e-9 * h) ++borderline;
+        bool empty = true;
+        for (int p = 0; p < count && empty; ++p) {
+          if (p == i || p == j || p == k) continue;
+          const double dx = n.x[p] - cx, dy = n.y[p] - cy;
+          empty = dx * dx + dy * dy >= r * r;
+        }
+        if (!empty) continue;
+        expected.insert({i, j, k});
+        expected_area += std::abs(signed_area(n, {i, j, k}));
+      }
+    }
+  }
+  ASSERT_EQ(borderline, 0) << "seed gives a triangle too close to the alpha threshold";
+
+  std::set<Triangle> actual;
+  for (auto t : m.triangles) {
+    std::sort(t.begin(), t.end());
+    actual.insert(t);
+  }
+  EXPECT_EQ(actual.size(), m.triangles.size()) << "duplicate triangles";
+  EXPECT_EQ(actual, expected);
+  EXPECT_NEAR(total_area(n, m), expected_area, 1e-12 * expected_area);
+  // Uniform random points leave holes: some, but not all, Delaunay faces fail the test.
+  EXPECT_GT(m.triangles.size(), static_cast<std::size_t>(count));
+  EXPECT_LT(m.triangles.size(), static_cast<std::size_t>(2 * count));
+}
+
+// Prints remesh() times for jittered grids; never asserts on time.
+TEST(Remesher, TimingOfJitteredGrids) {
+  for (const int side : {45, 90, 173}) {  // ~2000, ~8100, ~30000 points
+    const double h = 0.01;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> jitter(-0.2 * h, 0.2 * h);
+    Nodes n;
+    for (int j = 0; j < side; ++j) {
+      for (int i = 0; i < side; ++i) {
+        const bool wall = i == 0 || j == 0 || i == side - 1;
+        n.add(i * h + jitter(rng), j * h + jitter(rng), wall ? NodeKind::Wall : NodeKind::Fluid);
+      }
+    }
+    std::vector<double> ms;
+    std::size_t triangles = 0;
+    for (int rep = 0; rep < 7; ++rep) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const FluidMesh m = n.remesh(h, 1.3);
+      const auto t1 = std::chrono::steady_clock::now();
+      ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+      triangles = m.triangles.size();
+    }
+    std::sort(ms.begin(), ms.end());
+    std::printf("[ timing ] remesh of %zu points -> %zu triangles: median %.2f ms (min %.2f)\n",
+                n.x.size(), triangles, ms[ms.size() / 2], ms.front());
+    EXPECT_GT(triangles, n.x.size());  // sanity, not timing
+  }
+}
+
+}  // namespace
