@@ -32,7 +32,7 @@ struct Problem {
   double h = 0.0, alpha = 1.2;
   double dt = 0.0, t_end = 0.0;
   double newton_tolerance = 1e-10;
-  int newton_max_iterations = 20;
+  int newton_max_iterations = 50;
   int record_every = 1;
   int vtk_every = 10;
   Box domain;

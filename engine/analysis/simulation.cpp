@@ -21,6 +21,38 @@ int node_outside(const NodeState& nodes, const Box& domain) {
     if (!nodes.is_fixed(i) && !domain.contains(nodes.x[i], nodes.y[i])) return static_cast<int>(i);
   return -1;
 }
+// Largest number of halvings of a step whose Newton solve fails (1/16 of dt at most).
+constexpr int kMaxHalvings = 4;
+
+// Advances nodes by dt on mesh; when Newton fails (typically a sliver that inverts within the
+// step), retries as two half steps, remeshing in between. Timings and counts go into sum.
+StepReport advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings settings,
+                            const mesh::RemeshOptions& remesh_options, NodeState& nodes,
+                            const std::atomic<bool>* cancel, RunSummary& sum, int depth = 0) {
+  try {
+    return step.advance(mesh, settings, nodes, cancel);
+  } catch (const StepFailure&) {
+    if (depth == kMaxHalvings) throw;
+  }
+  settings.dt *= 0.5;
+  StepReport total;
+  for (int half = 0; half < 2; ++half) {
+    if (half == 1) {
+      const auto t0 = Clock::now();
+      mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
+      sum.remesh_seconds += since(t0);
+    }
+    const StepReport r = advance_adaptive(step, mesh, settings, remesh_options, nodes, cancel, sum, depth + 1);
+    total.iterations += r.iterations;
+    total.factorizations += r.factorizations;
+    total.assemble_seconds += r.assemble_seconds;
+    total.factorize_seconds += r.factorize_seconds;
+    total.solve_seconds += r.solve_seconds;
+  }
+  ++sum.substeps;
+  return total;
+}
+
 }  // namespace
 
 SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
@@ -71,7 +103,8 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
         mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
         sum.remesh_seconds += since(t0);
       }
-      const StepReport report = step.advance(mesh, settings, nodes, options.cancel);
+      const StepReport report =
+          advance_adaptive(step, mesh, settings, remesh_options, nodes, options.cancel, sum);
       sum.newton_iterations += report.iterations;
       sum.assemble_seconds += report.assemble_seconds;
       sum.factorize_seconds += report.factorize_seconds;

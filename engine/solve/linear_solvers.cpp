@@ -7,38 +7,38 @@
 
 namespace pfem {
 
-struct SpdSolver::Impl {
-  SpdBackend backend;
+struct SymmetricSolver::Impl {
+  SymmetricBackend backend;
   Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> cholmod;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt;
 };
 
-SpdSolver::SpdSolver(SpdBackend backend) : impl_(std::make_unique<Impl>()) {
+SymmetricSolver::SymmetricSolver(SymmetricBackend backend) : impl_(std::make_unique<Impl>()) {
   impl_->backend = backend;
-  // Supernodal LL^T was no faster than simplicial below ~50k unknowns here (toolchain.md).
-  impl_->cholmod.setMode(Eigen::CholmodSupernodalLLt);
+  impl_->cholmod.setMode(backend == SymmetricBackend::kCholmodLlt ? Eigen::CholmodSupernodalLLt
+                                                                  : Eigen::CholmodLDLt);
 }
-SpdSolver::~SpdSolver() = default;
+SymmetricSolver::~SymmetricSolver() = default;
 
-void SpdSolver::analyze(const SparseMatrix& a) {
-  if (impl_->backend == SpdBackend::kCholmod) impl_->cholmod.analyzePattern(a);
+void SymmetricSolver::analyze(const SparseMatrix& a) {
+  if (impl_->backend != SymmetricBackend::kEigenLdlt) impl_->cholmod.analyzePattern(a);
   else impl_->ldlt.analyzePattern(a);
 }
 
-void SpdSolver::factorize(const SparseMatrix& a) {
-  const bool ok = impl_->backend == SpdBackend::kCholmod
+void SymmetricSolver::factorize(const SparseMatrix& a) {
+  const bool ok = impl_->backend != SymmetricBackend::kEigenLdlt
                       ? (impl_->cholmod.factorize(a), impl_->cholmod.info() == Eigen::Success)
                       : (impl_->ldlt.factorize(a), impl_->ldlt.info() == Eigen::Success);
-  if (!ok) throw std::runtime_error("the condensed velocity matrix is not positive definite");
+  if (!ok) throw std::runtime_error("the Newton matrix could not be factorised (zero or wrong-signed pivot)");
 }
 
-Eigen::VectorXd SpdSolver::solve(const Eigen::VectorXd& b) const {
-  if (impl_->backend == SpdBackend::kCholmod) return impl_->cholmod.solve(b);
+Eigen::VectorXd SymmetricSolver::solve(const Eigen::VectorXd& b) const {
+  if (impl_->backend != SymmetricBackend::kEigenLdlt) return impl_->cholmod.solve(b);
   return impl_->ldlt.solve(b);
 }
 
-Eigen::MatrixXd SpdSolver::solve(const Eigen::MatrixXd& b) const {
-  if (impl_->backend == SpdBackend::kCholmod) return impl_->cholmod.solve(b);
+Eigen::MatrixXd SymmetricSolver::solve(const Eigen::MatrixXd& b) const {
+  if (impl_->backend != SymmetricBackend::kEigenLdlt) return impl_->cholmod.solve(b);
   return impl_->ldlt.solve(b);
 }
 

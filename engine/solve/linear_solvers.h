@@ -12,15 +12,18 @@ namespace pfem {
 
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
-enum class SpdBackend { kCholmod, kEigenLdlt };
+// kCholmodLlt: supernodal Cholesky, positive definite matrices only.
+// kCholmodLdlt, kEigenLdlt: simplicial LDL^T without pivoting, which also factorises the
+// symmetric quasi-definite [A B; B^T -C] systems (A, C positive definite) of the fluid.
+enum class SymmetricBackend { kCholmodLlt, kCholmodLdlt, kEigenLdlt };
 
-// Factorises symmetric positive definite matrices (the lower triangle is read).
-class SpdSolver {
+// Factorises symmetric matrices (the lower triangle is read).
+class SymmetricSolver {
  public:
-  explicit SpdSolver(SpdBackend backend = SpdBackend::kCholmod);
-  ~SpdSolver();
-  SpdSolver(const SpdSolver&) = delete;
-  SpdSolver& operator=(const SpdSolver&) = delete;
+  explicit SymmetricSolver(SymmetricBackend backend = SymmetricBackend::kCholmodLdlt);
+  ~SymmetricSolver();
+  SymmetricSolver(const SymmetricSolver&) = delete;
+  SymmetricSolver& operator=(const SymmetricSolver&) = delete;
 
   void analyze(const SparseMatrix& a);    // fill-reducing ordering and symbolic factorisation
   void factorize(const SparseMatrix& a);  // same pattern as analyze(); throws std::runtime_error

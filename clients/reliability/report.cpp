@@ -1,0 +1,261 @@
+#include "clients/reliability/report.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <vector>
+
+namespace pfem::reliability {
+
+namespace {
+
+// A small pretty-printing JSON writer (two-space indent; short arrays of numbers on one line).
+class JsonWriter {
+ public:
+  std::string take() { return std::move(out_) + "\n"; }
+
+  JsonWriter& begin_object() { return open('{'); }
+  JsonWriter& end_object() { return close('}'); }
+  JsonWriter& begin_array() { return open('['); }
+  JsonWriter& end_array() { return close(']'); }
+  JsonWriter& key(const std::string& k) {
+    separate();
+    out_ += quote(k) + ": ";
+    after_key_ = true;
+    return *this;
+  }
+  JsonWriter& value(double v) { return raw(number(v)); }
+  JsonWriter& value(long long v) { return raw(std::to_string(v)); }
+  JsonWriter& value(int v) { return raw(std::to_string(v)); }
+  JsonWriter& value(bool v) { return raw(v ? "true" : "false"); }
+  JsonWriter& value(const std::string& v) { return raw(quote(v)); }
+  JsonWriter& value(const char* v) { return raw(quote(v)); }
+  template <class T>
+  JsonWriter& field(const std::string& k, const T& v) {
+    key(k);
+    return value(v);
+  }
+  // An array of numbers on one line.
+  JsonWriter& numbers(const std::string& k, const std::vector<double>& values) {
+    key(k);
+    std::string s = "[";
+    for (std::size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + number(values[i]);
+    return raw(s + "]");
+  }
+
+  static std::string number(double v) {
+    if (!std::isfinite(v)) return "null";
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+  }
+
+ private:
+  static std::string quote(const std::string& s) {
+    std::string q = "\"";
+    for (char c : s) {
+      switch (c) {
+        case '"': q += "\\\""; break;
+        case '\\': q += "\\\\"; break;
+        case '\n': q += "\\n"; break;
+        case '\t': q += "\\t"; break;
+        case '\r': q += "\\r"; break;
+        default:
+          if (static_cast<unsigned char>(c) < 0x20) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\u%04x", c);
+            q += buf;
+          } else {
+            q += c;
+          }
+      }
+    }
+    return q + "\"";
+  }
+  void separate() {
+    if (after_key_) {
+      after_key_ = false;
+      return;
+    }
+    if (!first_.empty()) {
+      if (!first_.back()) out_ += ",";
+      first_.back() = false;
+      out_ += '\n';
+      out_.append(2 * first_.size(), ' ');
+    }
+  }
+  JsonWriter& raw(const std::string& s) {
+    separate();
+    out_ += s;
+    return *this;
+  }
+  JsonWriter& open(char c) {
+    separate();
+    out_ += c;
+    first_.push_back(true);
+    return *this;
+  }
+  JsonWriter& close(char c) {
+    const bool empty = first_.back();
+    first_.pop_back();
+    if (!empty) {
+      out_ += '\n';
+      out_.append(2 * first_.size(), ' ');
+    }
+    out_ += c;
+    return *this;
+  }
+
+  std::string out_;
+  std::vector<bool> first_;
+  bool after_key_ = false;
+};
+
+void named_values(JsonWriter& w, const std::string& k, const std::vector<std::string>& names,
+                  const Eigen::VectorXd& values) {
+  w.key(k).begin_object();
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    w.field(names[i], static_cast<Eigen::Index>(i) < values.size() ? values(i) : NAN);
+  }
+  w.end_object();
+}
+
+void sampling(JsonWriter& w, const std::string& k, const SamplingResult& s, std::uint64_t seed) {
+  w.key(k).begin_object();
+  w.field("samples", static_cast<long long>(s.samples));
+  w.field("failures", static_cast<long long>(s.failures));
+  w.field("pf", s.pf).field("cov", s.cov).field("beta", s.beta);
+  w.field("seed", static_cast<long long>(seed));
+  w.end_object();
+}
+
+std::string fmt(const char* format, double v) {
+  if (!std::isfinite(v)) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+}  // namespace
+
+std::string result_json(const Problem& problem, const AnalysisResult& result,
+                        const AnalysisOptions& options) {
+  const FormResult& f = result.form;
+  const auto& names = problem.names;
+  JsonWriter w;
+  w.begin_object();
+  w.field("problem", problem.name).field("description", problem.description);
+  w.field("method", std::string(to_string(f.method)));
+  w.field("converged", f.converged).field("message", f.message);
+  w.field("beta", f.beta).field("pf", f.pf);
+  w.field("iterations", f.iterations).field("evaluations", f.evaluations);
+  w.field("gradient_evaluations", f.gradient_evaluations);
+  w.field("gradient_source", f.gradient_source);
+  w.field("g_at_design_point", f.g);
+  w.key("variables").begin_array();
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const Distribution& d = problem.marginals[i];
+    w.begin_object();
+    w.field("name", names[i]).field("distribution", std::string(to_string(d.kind())));
+    w.field("mean", d.mean()).field("stddev", d.stddev());
+    w.key("parameters").begin_object();
+    for (const auto& [k, v] : d.parameters()) w.field(k, v);
+    w.end_object();
+    w.end_object();
+  }
+  w.end_array();
+  w.key("design_point").begin_object();
+  named_values(w, "x", names, f.x);
+  named_values(w, "u", names, f.u);
+  w.end_object();
+  named_values(w, "alpha", names, f.alpha);
+  named_values(w, "importance_factors", names, f.alpha.cwiseAbs2());
+  named_values(w, "gamma", names, f.gamma);
+  if (!result.sensitivities.empty()) {
+    w.key("sensitivities").begin_object();
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      const auto& s = result.sensitivities[i];
+      w.key(names[i]).begin_object();
+      w.field("dbeta_dmean", s.dbeta_dmean).field("dbeta_dstddev", s.dbeta_dstddev);
+      w.field("dpf_dmean", s.dpf_dmean).field("dpf_dstddev", s.dpf_dstddev);
+      w.end_object();
+    }
+    w.end_object();
+  }
+  if (result.sorm) {
+    const SormResult& s = *result.sorm;
+    w.key("sorm").begin_object();
+    w.field("valid", s.valid).field("message", s.message);
+    w.numbers("curvatures", s.curvatures);
+    w.field("evaluations", s.evaluations);
+    w.key("breitung").begin_object().field("pf", s.pf_breitung).field("beta", s.beta_breitung).end_object();
+    w.key("hohenbichler_rackwitz").begin_object();
+    w.field("pf", s.pf_hohenbichler_rackwitz).field("beta", s.beta_hohenbichler_rackwitz);
+    w.end_object();
+    w.key("tvedt").begin_object().field("pf", s.pf_tvedt).field("beta", s.beta_tvedt).end_object();
+    w.end_object();
+  }
+  if (result.importance_sampling) {
+    sampling(w, "importance_sampling", *result.importance_sampling, options.seed);
+  }
+  if (result.monte_carlo) sampling(w, "monte_carlo", *result.monte_carlo, options.seed);
+  w.field("wall_seconds", result.wall_seconds);
+  w.end_object();
+  return w.take();
+}
+
+std::string summary_text(const Problem& problem, const AnalysisResult& result,
+                         const AnalysisOptions& options) {
+  const FormResult& f = result.form;
+  std::ostringstream out;
+  out << "pfem-form: " << (problem.name.empty() ? "(unnamed problem)" : problem.name) << " - "
+      << problem.names.size() << " variables, expression limit state, method "
+      << to_string(f.method) << "\n";
+  out << "FORM  " << (f.converged ? "converged" : "NOT CONVERGED") << " after " << f.iterations
+      << " iterations, " << f.evaluations << " evaluations of g (gradients: " << f.gradient_source
+      << ")\n";
+  if (!f.converged) out << "      " << f.message << "\n";
+  out << "      beta = " << fmt("%.6g", f.beta) << "   pf = " << fmt("%.6e", f.pf) << "\n\n";
+  char line[256];
+  std::snprintf(line, sizeof line, "  %-10s %-16s %11s %11s %12s %9s %8s %12s %12s\n", "variable",
+                "distribution", "mean", "stddev", "x*", "u*", "alpha", "dbeta/dmean",
+                "dbeta/dsd");
+  out << line;
+  for (std::size_t i = 0; i < problem.names.size(); ++i) {
+    const Distribution& d = problem.marginals[i];
+    const bool has_s = i < result.sensitivities.size();
+    std::snprintf(line, sizeof line, "  %-10s %-16s %11s %11s %12s %9s %8s %12s %12s\n",
+                  problem.names[i].c_str(), std::string(to_string(d.kind())).c_str(),
+                  fmt("%.5g", d.mean()).c_str(), fmt("%.5g", d.stddev()).c_str(),
+                  fmt("%.6g", f.x(i)).c_str(), fmt("%.4f", f.u(i)).c_str(),
+                  fmt("%.4f", f.alpha(i)).c_str(),
+                  has_s ? fmt("%.4e", result.sensitivities[i].dbeta_dmean).c_str() : "-",
+                  has_s ? fmt("%.4e", result.sensitivities[i].dbeta_dstddev).c_str() : "-");
+    out << line;
+  }
+  if (result.sorm) {
+    const SormResult& s = *result.sorm;
+    out << "\nSORM  curvatures:";
+    for (double k : s.curvatures) out << " " << fmt("%.4g", k);
+    out << "\n";
+    if (!s.valid) out << "      " << s.message << "\n";
+    out << "      Breitung               pf = " << fmt("%.6e", s.pf_breitung)
+        << "   beta = " << fmt("%.6g", s.beta_breitung) << "\n";
+    out << "      Hohenbichler-Rackwitz  pf = " << fmt("%.6e", s.pf_hohenbichler_rackwitz)
+        << "   beta = " << fmt("%.6g", s.beta_hohenbichler_rackwitz) << "\n";
+    out << "      Tvedt                  pf = " << fmt("%.6e", s.pf_tvedt)
+        << "   beta = " << fmt("%.6g", s.beta_tvedt) << "\n";
+  }
+  const auto sampled = [&](const char* label, const SamplingResult& s) {
+    out << label << s.samples << " samples (seed " << options.seed << "): pf = "
+        << fmt("%.6e", s.pf) << "   c.o.v. = " << fmt("%.4f", s.cov)
+        << "   beta = " << fmt("%.6g", s.beta) << "\n";
+  };
+  if (result.importance_sampling || result.monte_carlo) out << "\n";
+  if (result.importance_sampling) sampled("IS    ", *result.importance_sampling);
+  if (result.monte_carlo) sampled("MC    ", *result.monte_carlo);
+  return out.str();
+}
+
+}  // namespace pfem::reliability
