@@ -35,8 +35,9 @@ struct Nodes {
     kind.push_back(k);
     return static_cast<std::int32_t>(x.size() - 1);
   }
-  FluidMesh remesh(double h, double alpha) const {
-    return pfem::mesh::remesh(x, y, kind, RemeshOptions{h, alpha});
+  // Without gravity unless given: then "hanging" triangles are dropped too.
+  FluidMesh remesh(double h, double alpha, double gy = 0.0) const {
+    return pfem::mesh::remesh(x, y, kind, RemeshOptions{h, alpha, 0.0, gy});
   }
 };
 
@@ -66,7 +67,8 @@ double total_area(const Nodes& n, const FluidMesh& m) {
   return a;
 }
 
-// Free surface recomputed from the triangle list: fluid ends of edges used exactly once.
+// Free surface recomputed from the triangle list: both ends of every edge used exactly once
+// that has a fluid end (an edge between two wall/structure nodes is a wall, not free).
 std::vector<std::uint8_t> free_surface_from_triangles(const Nodes& n, const FluidMesh& m) {
   std::map<std::pair<std::int32_t, std::int32_t>, int> uses;
   for (const auto& t : m.triangles) {
@@ -78,9 +80,8 @@ std::vector<std::uint8_t> free_surface_from_triangles(const Nodes& n, const Flui
   std::vector<std::uint8_t> fs(n.x.size(), 0);
   for (const auto& [edge, count] : uses) {
     if (count != 1) continue;
-    for (const std::int32_t v : {edge.first, edge.second}) {
-      if (n.kind[v] == NodeKind::Fluid) fs[v] = 1;
-    }
+    if (n.kind[edge.first] == NodeKind::Fluid || n.kind[edge.second] == NodeKind::Fluid)
+      fs[edge.first] = fs[edge.second] = 1;
   }
   return fs;
 }
@@ -163,15 +164,22 @@ TEST(Remesher, SparseOutlierIsLeftOut) {
 struct Box {
   Nodes nodes;
   std::set<std::int32_t> top_row, right_column;
+  std::set<std::int32_t> waterline_walls;  // side-wall nodes at the water's height
+  std::set<std::int32_t> above_waterline;  // side-wall nodes one spacing above it
+  std::int32_t bottom_right = -1;          // the bottom wall's last node
 };
 
 Box fluid_in_box(int cols, int rows, double h, bool right_wall) {
   Box b;
   const int wall_top = rows + 2;  // the side walls stand two spacings above the water
-  for (int i = 0; i <= cols + 1; ++i) b.nodes.add(i * h, 0.0, NodeKind::Wall);
-  for (int j = 1; j <= wall_top; ++j) b.nodes.add(0.0, j * h, NodeKind::Wall);
-  if (right_wall) {
-    for (int j = 1; j <= wall_top; ++j) b.nodes.add((cols + 1) * h, j * h, NodeKind::Wall);
+  for (int i = 0; i <= cols + 1; ++i) b.bottom_right = b.nodes.add(i * h, 0.0, NodeKind::Wall);
+  for (int x : {0, right_wall ? cols + 1 : -1}) {
+    if (x < 0) continue;
+    for (int j = 1; j <= wall_top; ++j) {
+      const std::int32_t v = b.nodes.add(x * h, j * h, NodeKind::Wall);
+      if (j == rows) b.waterline_walls.insert(v);
+      if (j == rows + 1) b.above_waterline.insert(v);
+    }
   }
   for (int j = 1; j <= rows; ++j) {
     for (int i = 1; i <= cols; ++i) {
@@ -191,25 +199,41 @@ std::set<std::int32_t> flagged(const std::vector<std::uint8_t>& flags) {
   return s;
 }
 
-TEST(Remesher, FreeSurfaceOfFluidInOpenBoxIsTheTopRow) {
+TEST(Remesher, FreeSurfaceOfWaterInABoxIsTheTopRowAndTheContactLine) {
   const double h = 0.02;
   const int cols = 9, rows = 5;
   const Box box = fluid_in_box(cols, rows, h, /*right_wall=*/true);
-  const FluidMesh m = box.nodes.remesh(h, 1.2);
+  const FluidMesh m = box.nodes.remesh(h, 1.2, /*gy=*/-9.81);
 
-  EXPECT_EQ(flagged(m.free_surface), box.top_row);
+  // With gravity the half-cells (wall, wall, top corner particle) above the water line are
+  // dropped: p = 0 on the top row and on the wall nodes at the water line.
+  std::set<std::int32_t> expected = box.top_row;
+  expected.insert(box.waterline_walls.begin(), box.waterline_walls.end());
+  EXPECT_EQ(flagged(m.free_surface), expected);
   for (std::size_t i = 0; i < box.nodes.x.size(); ++i) {
     if (box.nodes.kind[i] == NodeKind::Fluid) {
       EXPECT_EQ(m.in_mesh[i], 1) << "fluid node " << i;
     }
   }
+  for (const auto v : box.above_waterline) EXPECT_EQ(m.in_mesh[v], 0) << "wall node " << v;
   // The cells between the walls up to the water line are meshed, except perhaps the
-  // wall-only halves of the two bottom corner cells (whichever diagonal CGAL picks there);
-  // above it the two half-cells (wall, wall, top corner particle) with radius 0.71h are kept.
+  // wall-only halves of the two bottom corner cells (whichever diagonal CGAL picks there).
   const double water = (cols + 1) * rows * h * h;
   const double area = total_area(box.nodes, m);
-  EXPECT_GE(area, water - 1e-12);
-  EXPECT_LE(area, water + 1.0 * h * h + 1e-12);
+  EXPECT_GE(area, water - 1.0 * h * h - 1e-12);
+  EXPECT_LE(area, water + 1e-12);
+  expect_consistent(box.nodes, m, h, 1.2);
+}
+
+TEST(Remesher, WithoutGravityTheWaterWetsOneSpacingUpTheWalls) {
+  const double h = 0.02;
+  const Box box = fluid_in_box(9, 5, h, /*right_wall=*/true);
+  const FluidMesh m = box.nodes.remesh(h, 1.2);
+  // The half-cells above the corner particles stay (radius 0.71 h): their upper wall nodes
+  // are on free edges, the wall nodes at the water line are inside.
+  std::set<std::int32_t> expected = box.top_row;
+  expected.insert(box.above_waterline.begin(), box.above_waterline.end());
+  EXPECT_EQ(flagged(m.free_surface), expected);
   expect_consistent(box.nodes, m, h, 1.2);
 }
 
@@ -217,11 +241,14 @@ TEST(Remesher, FreeSurfaceWithoutRightWallIncludesTheExposedColumn) {
   const double h = 0.02;
   const int cols = 9, rows = 5;
   const Box box = fluid_in_box(cols, rows, h, /*right_wall=*/false);
-  const FluidMesh m = box.nodes.remesh(h, 1.2);
+  const FluidMesh m = box.nodes.remesh(h, 1.2, /*gy=*/-9.81);
 
   std::set<std::int32_t> expected = box.top_row;
   expected.insert(box.right_column.begin(), box.right_column.end());
   EXPECT_EQ(expected.size(), static_cast<std::size_t>(cols + rows - 1));
+  // Contact points: the left wall at the water line, the bottom wall beyond the column.
+  expected.insert(box.waterline_walls.begin(), box.waterline_walls.end());
+  expected.insert(box.bottom_right);
   EXPECT_EQ(flagged(m.free_surface), expected);
   expect_consistent(box.nodes, m, h, 1.2);
 }
