@@ -30,6 +30,7 @@ struct Problem {
   double thickness = 1.0;
   double gx = 0.0, gy = -9.81;
   double h = 0.0, alpha = 1.2;
+  double removal_distance = 0.2;  // relative to h
   double dt = 0.0, t_end = 0.0;
   double newton_tolerance = 1e-10;
   int newton_max_iterations = 50;

@@ -65,6 +65,7 @@ struct RunSummary {
   double solve_seconds = 0.0;
   long newton_iterations = 0;
   int substeps = 0;         // steps split in halves after a failed Newton solve
+  int removed_particles = 0;  // taken out for coming too close to another node
   int particles = 0;
   int max_elements = 0;
   double fluid_area_initial = 0.0;

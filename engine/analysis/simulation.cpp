@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/analysis/recorders.h"
+#include "engine/mesh/particle_removal.h"
 #include "engine/io/vtk_writer.h"
 #include "engine/solve/fluid_step.h"
 
@@ -122,6 +123,8 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
       }
       if (vtk && (n % vtk_every == 0 || n == total_steps)) vtk->write(time, nodes, mesh);
       sum.fluid_area_final = fluid_area(mesh, nodes);
+      sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind,
+                                                            problem.removal_distance * problem.h);
       if (options.progress) {
         Progress pr;
         pr.step = n;

@@ -123,6 +123,7 @@ Problem build_problem(const pfem::v1::Model& model) {
   if (model.has_gravity()) pb.gx = model.gravity().x(), pb.gy = model.gravity().y();
   pb.h = model.mesh().h();
   pb.alpha = model.mesh().has_alpha() ? model.mesh().alpha() : 1.2;
+  if (model.mesh().has_removal_distance()) pb.removal_distance = model.mesh().removal_distance();
   const auto& a = model.analysis();
   pb.dt = a.dt();
   pb.t_end = a.t_end();

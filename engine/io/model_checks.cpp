@@ -79,6 +79,10 @@ void ModelChecker::check_mesh() {
     const double a = model_.mesh().alpha();
     if (!std::isfinite(a) || a < 0.8 || a > 3.0) error("mesh.alpha", "must be in [0.8, 3]");
   }
+  if (model_.mesh().has_removal_distance()) {
+    const double d = model_.mesh().removal_distance();
+    if (!std::isfinite(d) || d < 0.0 || d > 0.5) error("mesh.removal_distance", "must be in [0, 0.5]");
+  }
 }
 
 void ModelChecker::check_walls() {

@@ -43,7 +43,7 @@ void validate(std::span<const double> x, std::span<const double> y,
                                 std::to_string(options.alpha) + ")");
   }
   for (std::size_t i = 0; i < x.size(); ++i) {
-    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) {
+    if (kind[i] != NodeKind::Removed && (!std::isfinite(x[i]) || !std::isfinite(y[i]))) {
       throw std::invalid_argument("remesh: node " + std::to_string(i) +
                                   " has a non-finite coordinate");
     }
@@ -69,9 +69,11 @@ bool passes_alpha_test(const Point& p0, const Point& p1, const Point& p2, double
 // deterministic: the vertex carries the lowest input index among the coincident points, so
 // every later duplicate ends up in no triangle. Runs only when duplicates were found.
 void assign_lowest_duplicate_index(Delaunay& tri, std::span<const double> x,
-                                   std::span<const double> y) {
-  std::vector<std::int32_t> order(x.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::int32_t>(i);
+                                   std::span<const double> y, std::span<const NodeKind> kind) {
+  std::vector<std::int32_t> order;
+  order.reserve(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (kind[i] != NodeKind::Removed) order.push_back(static_cast<std::int32_t>(i));
   const auto less = [&](std::int32_t a, std::int32_t b) {
     if (x[a] != x[b]) return x[a] < x[b];
     if (y[a] != y[b]) return y[a] < y[b];
@@ -101,11 +103,11 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
   std::vector<std::pair<Point, std::int32_t>> points;
   points.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    points.emplace_back(Point(x[i], y[i]), static_cast<std::int32_t>(i));
+    if (kind[i] != NodeKind::Removed) points.emplace_back(Point(x[i], y[i]), static_cast<std::int32_t>(i));
   }
   Delaunay tri;
   tri.insert(points.begin(), points.end());  // spatially sorted bulk insert
-  if (tri.number_of_vertices() < n) assign_lowest_duplicate_index(tri, x, y);
+  if (tri.number_of_vertices() < points.size()) assign_lowest_duplicate_index(tri, x, y, kind);
 
   // Pass 1: alpha test and fluid test per finite face; record kept triangles.
   const double max_radius = options.alpha * options.h;

@@ -10,7 +10,8 @@
 namespace pfem::mesh {
 
 // Fluid particles carry the fluid; wall and structure nodes bound it and are never removed.
-enum class NodeKind : std::uint8_t { Fluid = 0, Wall = 1, Structure = 2 };
+// Removed particles (taken out for mesh quality) keep their index but are not triangulated.
+enum class NodeKind : std::uint8_t { Fluid = 0, Wall = 1, Structure = 2, Removed = 3 };
 
 struct RemeshOptions {
   double h = 0.0;      // particle spacing [m], > 0

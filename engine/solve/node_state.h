@@ -22,7 +22,10 @@ struct NodeState {
     vx.push_back(pvx), vy.push_back(pvy), p.push_back(0.0), kind.push_back(k);
     return static_cast<int>(x.size()) - 1;
   }
-  bool is_fixed(std::size_t i) const { return kind[i] == mesh::NodeKind::Wall; }
+  // Walls and removed particles never move.
+  bool is_fixed(std::size_t i) const {
+    return kind[i] == mesh::NodeKind::Wall || kind[i] == mesh::NodeKind::Removed;
+  }
 };
 
 }  // namespace pfem

@@ -1,0 +1,155 @@
+#!/usr/bin/python3
+"""pfem_client against a real pfem-server started here on 127.0.0.1 with an ephemeral port.
+
+Run by ctest (python_client_test) with PYTHONPATH=build/python:clients/python and
+PFEM_SERVER=build/bin/pfem-server."""
+import importlib.util
+import io
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import unittest
+from contextlib import redirect_stdout
+
+import grpc
+import numpy as np
+
+from pfem_client import Client, ServiceError, plot_histories
+
+TINY = {
+    "name": "tiny",
+    "fluid": {"rho": 1000.0, "mu": 0.001, "kappa": 2.15e9},
+    "mesh": {"h": 0.01},
+    "fluid_regions": [{"name": "water", "rectangle": {"min": {"x": 0.0, "y": 0.0},
+                                                      "max": {"x": 0.05, "y": 0.04}}}],
+    "walls": [{"name": "box", "closed": True, "points": [
+        {"x": 0.0, "y": 0.0}, {"x": 0.05, "y": 0.0}, {"x": 0.05, "y": 0.08}, {"x": 0.0, "y": 0.08}]}],
+    "analysis": {"dt": 0.002, "t_end": 0.01},
+    "recorders": [
+        {"name": "bottom_p", "quantity": "p", "point": {"x": 0.025, "y": 0.0}},
+        {"name": "fluid_area", "quantity": "fluid_area"},
+        {"name": "front_x", "quantity": "front_x"}],
+    "parameters": [{"name": "rho_f", "targets": ["fluid.rho"]},
+                   {"name": "kappa", "targets": ["fluid.kappa"]}],
+}
+TOKEN = "python-test-token"
+
+
+class ClientTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="pfem_python_test_")
+        cls.token_file = os.path.join(cls.tmp, "tokens")
+        with open(cls.token_file, "w") as f:
+            f.write(TOKEN + "\n")
+        cls.server = subprocess.Popen(
+            [os.environ["PFEM_SERVER"], "--listen", "127.0.0.1:0", "--data-dir",
+             os.path.join(cls.tmp, "data"), "--workers", "2", "--token-file", cls.token_file],
+            stdout=subprocess.PIPE, text=True)
+        timer = threading.Timer(30, cls.server.kill)  # bounded wait for the first line
+        timer.start()
+        line = cls.server.stdout.readline()
+        timer.cancel()
+        if "listening on" not in line:
+            raise RuntimeError(f"pfem-server did not start: {line!r}")
+        cls.address = line.split()[-1]
+        cls.client = Client(cls.address, token=TOKEN)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.client.close()
+        cls.server.send_signal(signal.SIGTERM)
+        try:
+            cls.server.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            cls.server.kill()
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def test_missing_or_wrong_token_is_unauthenticated(self):
+        for token in (None, "wrong"):
+            with Client(self.address, token=token) as c:
+                with self.assertRaises(ServiceError) as e:
+                    c.validate(TINY)
+                self.assertEqual(e.exception.code, grpc.StatusCode.UNAUTHENTICATED)
+
+    def test_invalid_model_names_the_field(self):
+        bad = dict(TINY, fluid={"rho": -1.0, "mu": 0.001, "kappa": 2.15e9})
+        answer = self.client.validate(bad)
+        self.assertFalse(answer.valid)
+        self.assertEqual(answer.errors[0].path, "fluid.rho")
+        with self.assertRaises(ServiceError) as e:
+            self.client.submit(bad)
+        self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
+        self.assertIn("fluid.rho: must be > 0", e.exception.details)
+        self.assertEqual(self.client.validate(TINY).estimated_particles, 20)
+
+    def test_submit_watch_result_evaluate_and_plot(self):
+        job_id = self.client.submit(TINY, sensitivity="fdm", param_values={"rho_f": 1005.0})
+        updates = []
+        job = self.client.watch(job_id, callback=updates.append)
+        self.assertGreaterEqual(len(updates), 1)
+        self.assertEqual(job.state, 3, job.error.message)  # JOB_STATE_SUCCEEDED
+        self.assertEqual(job.progress.step, 5)
+
+        result = self.client.result(job_id)
+        self.assertEqual(result.time.shape, (6,))
+        self.assertEqual(sorted(result.responses), ["bottom_p", "fluid_area", "front_x"])
+        self.assertEqual(len(result.sensitivities), 6)
+        self.assertEqual(result.parameters, ["rho_f", "kappa"])
+        self.assertEqual(result.summary.parameter_values[0], 1005.0)
+        p = result.responses["bottom_p"]
+        self.assertTrue(np.all(np.isfinite(p)))
+
+        # Evaluate on the same model and settings: the same numbers, bit for bit.
+        ev = self.client.evaluate(TINY, ["bottom_p:max", "fluid_area:final", "bottom_p:at:0.004"],
+                                  param_values={"rho_f": 1005.0}, sensitivity="fdm")
+        i = int(np.argmax(p))
+        self.assertEqual(ev.values[0], p[i])
+        self.assertEqual(ev.times[0], result.time[i])
+        self.assertEqual(ev.gradients[0, 0], result.sensitivity("bottom_p", "rho_f")[i])
+        self.assertEqual(ev.gradients[0, 1], result.sensitivity("bottom_p", "kappa")[i])
+        self.assertEqual(ev.values[1], result.responses["fluid_area"][-1])
+        self.assertEqual(ev.values[2], p[2])  # t = 0.004 is the third sample
+        self.assertEqual(ev.parameters, ["rho_f", "kappa"])
+        self.assertEqual(ev.gradients.shape, (3, 2))
+        self.assertFalse(ev.cached)
+        again = self.client.evaluate(TINY, ["bottom_p:max"], param_values={"rho_f": 1005.0},
+                                     sensitivity="fdm")
+        self.assertTrue(again.cached)
+        self.assertEqual(again["bottom_p:max"][0], ev.values[0])
+
+        paths = plot_histories(result, os.path.join(self.tmp, "plots"))
+        self.assertEqual([os.path.basename(x) for x in paths],
+                         ["responses.png", "sensitivities.png"])
+        for path in paths:
+            with open(path, "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+
+    def test_example_script_writes_the_figures(self):
+        here = os.path.dirname(os.path.abspath(__file__))
+        spec = importlib.util.spec_from_file_location(
+            "fig34", os.path.join(here, "..", "examples", "fig34_sensitivities.py"))
+        fig34 = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(fig34)
+        model = os.path.join(self.tmp, "tiny.json")
+        import json
+        with open(model, "w") as f:
+            json.dump(TINY, f)
+        out = os.path.join(self.tmp, "fig34")
+        printed = io.StringIO()
+        with redirect_stdout(printed):
+            rc = fig34.main([model, "--server", self.address, "--token-file", self.token_file,
+                             "--recorders", "bottom_p,front_x", "--params", "rho_f,kappa",
+                             "--sensitivity", "fdm", "--scaled", "--out", out])
+        self.assertEqual(rc, 0)
+        for name in ("fig3_responses.png", "fig4_sensitivities.png", "responses.png"):
+            self.assertTrue(os.path.getsize(os.path.join(out, name)) > 1000, name)
+        self.assertIn("fig4_sensitivities.png", printed.getvalue())
+
+
+if __name__ == "__main__":
+    unittest.main()

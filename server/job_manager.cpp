@@ -1,0 +1,421 @@
+#include "server/job_manager.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <random>
+
+#include "server/convert.h"
+#include "server/status.h"
+
+namespace pfem::server {
+namespace {
+
+double now_unix() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+std::string new_job_id() {
+  static std::mutex mutex;
+  static std::mt19937_64 rng{std::random_device{}()};
+  std::lock_guard lock(mutex);
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::uint64_t v = rng();
+  std::string id(16, '0');
+  for (int i = 15; i >= 0; --i, v >>= 4) id[static_cast<std::size_t>(i)] = kHex[v & 15];
+  return id;
+}
+
+bool finished(pfem::v1::JobState s) {
+  return s == pfem::v1::JOB_STATE_SUCCEEDED || s == pfem::v1::JOB_STATE_FAILED ||
+         s == pfem::v1::JOB_STATE_CANCELLED;
+}
+
+}  // namespace
+
+struct JobManager::ActiveJob {
+  std::mutex m;
+  std::condition_variable cv;
+  pfem::v1::Job job;          // snapshot shown to GetJob / WatchJob
+  std::uint64_t version = 0;  // bumped on every change of `job`
+  std::atomic<bool> cancel{false};
+  std::atomic<bool> user_cancelled{false};
+  std::atomic<bool> timed_out{false};
+  std::atomic<bool> interrupted{false};  // stopped by a shutdown: back to QUEUED
+
+  void update(const std::function<void(pfem::v1::Job&)>& change) {
+    {
+      std::lock_guard lock(m);
+      change(job);
+      ++version;
+    }
+    cv.notify_all();
+  }
+  pfem::v1::Job snapshot() {
+    std::lock_guard lock(m);
+    return job;
+  }
+};
+
+struct JobManager::EvalTask {
+  pfem::v1::Model model;
+  RunOptions options;
+  std::atomic<bool> cancel{false};
+  std::mutex m;
+  std::condition_variable cv;
+  bool started = false;
+  bool done = false;
+  RunResult result;
+  std::exception_ptr error;
+};
+
+JobManager::JobManager(Store& store, JobManagerOptions options, RunFunction run)
+    : store_(store), options_(options), run_(std::move(run)) {
+  if (!run_) run_ = [](const pfem::v1::Model& m, const RunOptions& o) { return pfem::run(m, o); };
+}
+
+JobManager::~JobManager() {
+  if (started_ && !stopped_) stop(std::chrono::steady_clock::now());
+}
+
+void JobManager::start() {
+  const auto ids = store_.recover_queued();
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& id : ids) {
+      auto job = store_.get_job(id);
+      if (!job) continue;
+      auto entry = std::make_shared<ActiveJob>();
+      entry->job = *job;
+      active_[id] = entry;
+      queue_.push_back(id);
+    }
+    started_ = true;
+  }
+  const int n = std::max(1, options_.workers);
+  for (int i = 0; i < n; ++i) workers_.emplace_back([this] { worker_loop(); });
+}
+
+std::string JobManager::submit(const pfem::v1::SubmitJobRequest& request) {
+  std::lock_guard lock(mutex_);
+  if (draining_) throw ServiceError(grpc::StatusCode::UNAVAILABLE, "server is shutting down");
+  if (static_cast<long>(queue_.size()) >= options_.max_queued) {
+    throw ServiceError(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                       "max-queued limit reached: " + std::to_string(queue_.size()) +
+                           " jobs are queued, the limit is " +
+                           std::to_string(options_.max_queued));
+  }
+  auto entry = std::make_shared<ActiveJob>();
+  auto& job = entry->job;
+  job.set_id(new_job_id());
+  job.set_state(pfem::v1::JOB_STATE_QUEUED);
+  job.set_model_name(request.model().name());
+  job.set_created_unix(now_unix());
+  job.set_sensitivity(request.options().sensitivity() == pfem::v1::SENSITIVITY_METHOD_UNSPECIFIED
+                          ? pfem::v1::SENSITIVITY_METHOD_NONE
+                          : request.options().sensitivity());
+  store_.insert_job(job, request);
+  active_[job.id()] = entry;
+  queue_.push_back(job.id());
+  work_cv_.notify_one();
+  return job.id();
+}
+
+std::shared_ptr<JobManager::ActiveJob> JobManager::find_active(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  const auto it = active_.find(id);
+  return it == active_.end() ? nullptr : it->second;
+}
+
+pfem::v1::Job JobManager::get(const std::string& id) {
+  if (auto entry = find_active(id)) return entry->snapshot();
+  if (auto job = store_.get_job(id)) return *job;
+  throw ServiceError(grpc::StatusCode::NOT_FOUND, "no job '" + id + "'");
+}
+
+pfem::v1::Job JobManager::cancel(const std::string& id) {
+  std::shared_ptr<ActiveJob> entry;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = active_.find(id);
+    if (it != active_.end()) {
+      entry = it->second;
+      const auto q = std::find(queue_.begin(), queue_.end(), id);
+      if (q != queue_.end()) {  // still queued: cancelled here and now
+        pfem::v1::Job job = entry->snapshot();
+        job.set_state(pfem::v1::JOB_STATE_CANCELLED);
+        job.set_finished_unix(now_unix());
+        job.mutable_error()->set_message("cancelled before it started");
+        job.mutable_error()->set_step(-1);
+        store_.finish_job(job, nullptr, "cancelled while queued");
+        queue_.erase(q);
+        entry->update([&](pfem::v1::Job& j) { j = job; });
+        active_.erase(it);
+        return job;
+      }
+    }
+  }
+  if (entry) {
+    entry->user_cancelled = true;
+    entry->cancel = true;
+    return entry->snapshot();
+  }
+  auto job = store_.get_job(id);
+  if (!job) throw ServiceError(grpc::StatusCode::NOT_FOUND, "no job '" + id + "'");
+  throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
+                     "job '" + id + "' has already finished (" +
+                         pfem::v1::JobState_Name(job->state()) + ")");
+}
+
+pfem::v1::Job JobManager::wait_for_change(const std::string& id, std::uint64_t* version,
+                                          std::chrono::milliseconds timeout) {
+  auto entry = find_active(id);
+  if (!entry) return get(id);
+  std::unique_lock lock(entry->m);
+  entry->cv.wait_for(lock, timeout, [&] {
+    return entry->version != *version || finished(entry->job.state());
+  });
+  *version = entry->version;
+  return entry->job;
+}
+
+RunResult JobManager::run_now(const pfem::v1::Model& model, RunOptions options,
+                              const std::function<grpc::StatusCode()>& should_stop) {
+  auto task = std::make_shared<EvalTask>();
+  task->model = model;
+  task->options = std::move(options);
+  {
+    std::lock_guard lock(mutex_);
+    if (stopping_) throw ServiceError(grpc::StatusCode::UNAVAILABLE, "server is shutting down");
+    eval_queue_.push_back(task);
+  }
+  work_cv_.notify_one();
+  grpc::StatusCode stop_code = grpc::StatusCode::OK;
+  std::unique_lock lock(task->m);
+  while (!task->done) {
+    task->cv.wait_for(lock, std::chrono::milliseconds(20));
+    if (task->done || stop_code != grpc::StatusCode::OK) continue;
+    lock.unlock();
+    stop_code = should_stop ? should_stop() : grpc::StatusCode::OK;
+    lock.lock();
+    if (stop_code == grpc::StatusCode::OK) continue;
+    task->cancel = true;
+    if (!task->started) {  // never reached a worker: take it out of the lane
+      task->done = true;
+      lock.unlock();
+      std::lock_guard qlock(mutex_);
+      const auto it = std::find(eval_queue_.begin(), eval_queue_.end(), task);
+      if (it != eval_queue_.end()) eval_queue_.erase(it);
+      lock.lock();
+    }
+  }
+  if (stop_code != grpc::StatusCode::OK) {
+    throw ServiceError(stop_code, stop_code == grpc::StatusCode::DEADLINE_EXCEEDED
+                                      ? "deadline exceeded: the run was cancelled"
+                                      : "the call was cancelled: the run was stopped");
+  }
+  if (task->error) std::rethrow_exception(task->error);
+  return std::move(task->result);
+}
+
+void JobManager::worker_loop() {
+  for (;;) {
+    std::shared_ptr<EvalTask> task;
+    std::shared_ptr<ActiveJob> entry;
+    {
+      std::unique_lock lock(mutex_);
+      work_cv_.wait(lock, [&] {
+        return stopping_ || !eval_queue_.empty() || (!draining_ && !queue_.empty());
+      });
+      if (!eval_queue_.empty()) {
+        task = eval_queue_.front();
+        eval_queue_.pop_front();
+      } else if (stopping_) {
+        return;
+      } else {
+        const std::string id = queue_.front();
+        queue_.pop_front();
+        entry = active_.at(id);
+        ++running_jobs_;
+      }
+    }
+    if (task) {
+      run_eval(task);
+      continue;
+    }
+    run_job(entry);
+    {
+      std::lock_guard lock(mutex_);
+      --running_jobs_;
+      active_.erase(entry->job.id());
+    }
+    idle_cv_.notify_all();
+  }
+}
+
+void JobManager::run_eval(const std::shared_ptr<EvalTask>& task) {
+  {
+    std::lock_guard lock(task->m);
+    if (task->done) return;  // abandoned by its caller before it started
+    task->started = true;
+  }
+  try {
+    task->options.cancel = &task->cancel;
+    task->result = run_(task->model, task->options);
+  } catch (...) {
+    task->error = std::current_exception();
+  }
+  {
+    std::lock_guard lock(task->m);
+    task->done = true;
+  }
+  task->cv.notify_all();
+}
+
+void JobManager::run_job(const std::shared_ptr<ActiveJob>& entry) {
+  const std::string id = entry->snapshot().id();
+  entry->update([](pfem::v1::Job& job) {
+    job.set_state(pfem::v1::JOB_STATE_RUNNING);
+    job.set_started_unix(now_unix());
+    job.set_attempts(job.attempts() + 1);
+    job.clear_error();
+  });
+  std::optional<pfem::v1::Result> result;
+  std::string failure;  // an exception before or instead of a result
+  try {
+    store_.update_job(entry->snapshot(), "started");
+    const auto request = store_.get_request(id);
+    if (!request) throw StoreError("no request stored for job " + id);
+    pfem::v1::Model model = request->model();
+    const auto errors = apply_parameter_values(model, request->parameter_values());
+    if (!errors.empty()) throw ModelError(errors);
+    RunOptions options = to_run_options(request->options(), SensitivityMethod::kNone);
+    options.cancel = &entry->cancel;
+    std::optional<std::chrono::steady_clock::time_point> deadline;
+    if (request->has_timeout_seconds()) {
+      deadline = std::chrono::steady_clock::now() +
+                 std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                     std::chrono::duration<double>(request->timeout_seconds()));
+    }
+    options.progress = [entry, deadline](const Progress& p) {
+      entry->update([&](pfem::v1::Job& job) { *job.mutable_progress() = to_proto(p); });
+      if (deadline && std::chrono::steady_clock::now() > *deadline) {
+        entry->timed_out = true;
+        entry->cancel = true;
+      }
+    };
+    result = to_proto(run_(model, options));
+  } catch (const ModelError& e) {
+    failure = std::string("invalid model: ") + e.what();
+  } catch (const std::exception& e) {
+    failure = e.what();
+  } catch (...) {
+    failure = "unknown error";
+  }
+
+  // The store is written first and the snapshot after, so that whoever sees the final
+  // state (GetJob, WatchJob) also finds the stored result.
+  try {
+    pfem::v1::Job job = entry->snapshot();
+    if (entry->interrupted) {
+      job.set_state(pfem::v1::JOB_STATE_QUEUED);
+      job.clear_progress();
+      store_.update_job(job, "re-queued: interrupted by a server shutdown");
+      entry->update([&](pfem::v1::Job& j) { j = job; });
+      return;
+    }
+    std::string note;
+    job.set_finished_unix(now_unix());
+    auto* error = job.mutable_error();
+    if (!result) {
+      job.set_state(pfem::v1::JOB_STATE_FAILED);
+      error->set_message(failure);
+      error->set_step(job.progress().step());
+      error->set_time(job.progress().time());
+      note = "failed: " + failure;
+    } else {
+      const auto& s = result->summary();
+      switch (s.status()) {
+        case pfem::v1::RUN_STATUS_FAILED:
+          job.set_state(pfem::v1::JOB_STATE_FAILED);
+          error->set_message(s.message());
+          error->set_step(s.failed_step());
+          error->set_time(s.failed_time());
+          note = "failed: " + s.message();
+          break;
+        case pfem::v1::RUN_STATUS_CANCELLED:
+          job.set_state(pfem::v1::JOB_STATE_CANCELLED);
+          error->set_message(entry->timed_out && !entry->user_cancelled
+                                 ? "timeout_seconds exceeded"
+                                 : (entry->user_cancelled ? "cancelled by a client"
+                                                          : s.message()));
+          error->set_step(s.steps());
+          error->set_time(job.progress().time());
+          note = "cancelled: " + error->message();
+          break;
+        default:
+          job.set_state(pfem::v1::JOB_STATE_SUCCEEDED);
+          job.clear_error();
+          note = "succeeded";
+          break;
+      }
+    }
+    store_.finish_job(job, result ? &*result : nullptr, note);
+    entry->update([&](pfem::v1::Job& j) { j = job; });
+  } catch (const std::exception& e) {
+    // The store failed: the job stays as it was stored (RUNNING) and is re-run on restart.
+    std::fprintf(stderr, "pfem-server: cannot store the end of job %s: %s\n", id.c_str(),
+                 e.what());
+  }
+}
+
+void JobManager::begin_drain() {
+  std::lock_guard lock(mutex_);
+  draining_ = true;
+}
+
+bool JobManager::draining() const {
+  std::lock_guard lock(mutex_);
+  return draining_;
+}
+
+void JobManager::stop(std::chrono::steady_clock::time_point deadline) {
+  std::unique_lock lock(mutex_);
+  if (stopped_) return;
+  draining_ = true;
+  work_cv_.notify_all();
+  idle_cv_.wait_until(lock, deadline, [&] { return running_jobs_ == 0; });
+  for (auto& [id, entry] : active_) {
+    if (entry->snapshot().state() == pfem::v1::JOB_STATE_RUNNING) {
+      entry->interrupted = true;
+      entry->cancel = true;
+    }
+  }
+  stopping_ = true;
+  for (auto& task : eval_queue_) {
+    std::lock_guard tlock(task->m);
+    task->error = std::make_exception_ptr(
+        ServiceError(grpc::StatusCode::UNAVAILABLE, "server is shutting down"));
+    task->done = true;
+    task->cv.notify_all();
+  }
+  eval_queue_.clear();
+  work_cv_.notify_all();
+  lock.unlock();
+  for (auto& t : workers_) t.join();
+  workers_.clear();
+  lock.lock();
+  stopped_ = true;
+}
+
+long JobManager::queued() const {
+  std::lock_guard lock(mutex_);
+  return static_cast<long>(queue_.size());
+}
+
+long JobManager::running() const {
+  std::lock_guard lock(mutex_);
+  return running_jobs_;
+}
+
+}  // namespace pfem::server

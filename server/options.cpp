@@ -1,0 +1,60 @@
+#include "server/options.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "engine/cli/arguments.h"
+
+namespace pfem::server {
+
+const char* const kServerUsage =
+    "usage: pfem-server --listen HOST:PORT --data-dir DIR [--token-file F] [--workers N]\n"
+    "                   [--tls-cert F --tls-key F] [--max-queued N] [--max-particles N]\n"
+    "                   [--max-steps N] [--max-message-mb N] [--grace-seconds S]\n"
+    "                   [--cache-entries N]\n";
+
+std::vector<std::string> ServerOptions::validate() const {
+  std::vector<std::string> errors;
+  if (listen.empty() || listen.find(':') == std::string::npos) {
+    errors.push_back("--listen: must be HOST:PORT");
+  }
+  if (data_dir.empty()) errors.push_back("--data-dir: required");
+  if (workers < 0) errors.push_back("--workers: must be >= 0 (0 = one per core)");
+  if (tls_cert.empty() != tls_key.empty()) {
+    errors.push_back("--tls-cert/--tls-key: give both or neither");
+  }
+  if (limits.max_queued < 1) errors.push_back("--max-queued: must be >= 1");
+  if (limits.max_particles < 1) errors.push_back("--max-particles: must be >= 1");
+  if (limits.max_steps < 1) errors.push_back("--max-steps: must be >= 1");
+  if (limits.max_message_mb < 1 || limits.max_message_mb > 2047) {
+    errors.push_back("--max-message-mb: must be in [1, 2047]");
+  }
+  if (!(grace_seconds >= 0.0) || !std::isfinite(grace_seconds)) {
+    errors.push_back("--grace-seconds: must be >= 0");
+  }
+  return errors;
+}
+
+ServerOptions parse_server_options(const std::vector<std::string>& args) {
+  cli::Arguments a(args);
+  ServerOptions o;
+  if (auto v = a.take_string("--listen")) o.listen = *v;
+  if (auto v = a.take_string("--data-dir")) o.data_dir = *v;
+  if (auto v = a.take_string("--token-file")) o.token_file = *v;
+  if (auto v = a.take_int("--workers")) o.workers = *v;
+  if (auto v = a.take_string("--tls-cert")) o.tls_cert = *v;
+  if (auto v = a.take_string("--tls-key")) o.tls_key = *v;
+  if (auto v = a.take_double("--max-queued")) o.limits.max_queued = static_cast<long>(*v);
+  if (auto v = a.take_double("--max-particles")) o.limits.max_particles = static_cast<long>(*v);
+  if (auto v = a.take_double("--max-steps")) o.limits.max_steps = static_cast<long>(*v);
+  if (auto v = a.take_int("--max-message-mb")) o.limits.max_message_mb = *v;
+  if (auto v = a.take_double("--grace-seconds")) o.grace_seconds = *v;
+  if (auto v = a.take_int("--cache-entries")) {
+    if (*v < 0) throw std::invalid_argument("--cache-entries: must be >= 0");
+    o.cache_entries = static_cast<std::size_t>(*v);
+  }
+  a.expect_done(0);
+  return o;
+}
+
+}  // namespace pfem::server

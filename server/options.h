@@ -1,0 +1,33 @@
+#pragma once
+// pfem-server settings (style practice 1: defaults in the declaration, a check naming the
+// flag and the rule it broke).
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "server/limits.h"
+
+namespace pfem::server {
+
+struct ServerOptions {
+  std::string listen = "127.0.0.1:50051";  // --listen HOST:PORT (port 0 = any free port)
+  std::filesystem::path data_dir;          // --data-dir DIR (required): the SQLite store
+  std::filesystem::path token_file;        // --token-file F: bearer tokens; empty = no auth
+  int workers = 0;                         // --workers N; 0 = one per core
+  std::filesystem::path tls_cert;          // --tls-cert F (PEM), with --tls-key
+  std::filesystem::path tls_key;           // --tls-key F (PEM), with --tls-cert
+  Limits limits;                           // --max-queued, --max-particles, --max-steps, --max-message-mb
+  double grace_seconds = 30.0;             // --grace-seconds S: drain time on SIGTERM/SIGINT
+  std::size_t cache_entries = 256;         // --cache-entries N: Evaluate runs kept in memory
+
+  // "--flag: rule" for every invalid setting; empty when valid.
+  std::vector<std::string> validate() const;
+};
+
+// Parses argv (without argv[0]); throws std::invalid_argument naming the flag.
+ServerOptions parse_server_options(const std::vector<std::string>& args);
+
+extern const char* const kServerUsage;
+
+}  // namespace pfem::server

@@ -1,0 +1,30 @@
+#pragma once
+// Checks shared by the handlers that start runs (SubmitJob, Evaluate): every field error at
+// once (INVALID_ARGUMENT), then the resource limits (RESOURCE_EXHAUSTED).
+#include <string>
+#include <vector>
+
+#include "engine/io/model_io.h"
+#include "pfem/v1/service.pb.h"
+#include "server/limits.h"
+
+namespace pfem::server {
+
+// The model with the parameter values applied, after checking (in this order, all errors
+// of the first three together): the parameter values, the model (validate_model, paths as
+// in `pfem validate`), the run options (paths "<options_prefix>.t_end", ...) and
+// more_errors (found by the caller), then the limits.
+// Throws ServiceError.
+pfem::v1::Model check_run_request(
+    pfem::v1::Model model,
+    const google::protobuf::RepeatedPtrField<pfem::v1::ParameterValue>& values,
+    const pfem::v1::RunOptions& options, const Limits& limits,
+    const std::string& options_prefix = "options", std::vector<FieldError> more_errors = {});
+
+// Every problem with Evaluate's functionals against the model's recorders
+// ("functionals[1].recorder: no recorder 'x' in the model").
+std::vector<FieldError> check_functionals(
+    const pfem::v1::Model& model,
+    const google::protobuf::RepeatedPtrField<pfem::v1::Functional>& functionals);
+
+}  // namespace pfem::server

@@ -1,0 +1,103 @@
+#include "server/server.h"
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/health_check_service_interface.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+namespace pfem::server {
+namespace {
+
+std::string read_file(const std::filesystem::path& file, const char* flag) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error(std::string(flag) + ": cannot read " + file.string());
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(std::move(options)) {
+  if (const auto errors = options_.validate(); !errors.empty()) {
+    std::string message;
+    for (const auto& e : errors) message += (message.empty() ? "" : "\n") + e;
+    throw std::runtime_error(message);
+  }
+  if (!options_.token_file.empty()) auth_ = TokenAuth::from_file(options_.token_file);
+  std::shared_ptr<grpc::ServerCredentials> credentials = grpc::InsecureServerCredentials();
+  if (!options_.tls_cert.empty()) {
+    grpc::SslServerCredentialsOptions ssl;
+    ssl.pem_key_cert_pairs.push_back({read_file(options_.tls_key, "--tls-key"),
+                                      read_file(options_.tls_cert, "--tls-cert")});
+    credentials = grpc::SslServerCredentials(ssl);
+  }
+
+  store_ = std::make_unique<Store>(options_.data_dir);
+  JobManagerOptions job_options;
+  job_options.workers = options_.workers > 0
+                            ? options_.workers
+                            : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  job_options.max_queued = options_.limits.max_queued;
+  jobs_ = std::make_unique<JobManager>(*store_, job_options, std::move(run));
+  cache_ = std::make_unique<ResultCache>(options_.cache_entries);
+  service_ = std::make_unique<GradientService>(*store_, *jobs_, *cache_, auth_, options_.limits);
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  builder.AddListeningPort(options_.listen, credentials, &port_);
+  builder.RegisterService(service_.get());
+  const int max_bytes = options_.limits.max_message_mb * 1024 * 1024;
+  builder.SetMaxReceiveMessageSize(max_bytes);
+  builder.SetMaxSendMessageSize(max_bytes);
+  jobs_->start();  // before the first call can queue a job
+  server_ = builder.BuildAndStart();
+  if (!server_ || port_ == 0) {
+    jobs_->stop(std::chrono::steady_clock::now());
+    shut_down_ = true;
+    throw std::runtime_error("--listen: cannot listen on " + options_.listen);
+  }
+  server_->GetHealthCheckService()->SetServingStatus(true);
+}
+
+Server::~Server() { shutdown(); }
+
+std::string Server::address() const {
+  const auto colon = options_.listen.rfind(':');
+  return options_.listen.substr(0, colon) + ":" + std::to_string(port_);
+}
+
+void Server::shutdown() {
+  if (shut_down_) return;
+  shut_down_ = true;
+  const auto start = std::chrono::steady_clock::now();
+  const auto deadline =
+      start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                  std::chrono::duration<double>(options_.grace_seconds));
+  const auto since = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  // Stop accepting: health NOT_SERVING, new calls UNAVAILABLE, queued jobs stay queued.
+  server_->GetHealthCheckService()->SetServingStatus(false);
+  service_->begin_drain();
+  jobs_->begin_drain();
+  // Let the calls in progress and the running jobs finish within the grace period.
+  while (std::chrono::steady_clock::now() < deadline &&
+         (service_->in_flight() > 0 || jobs_->running() > 0)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const int calls = service_->in_flight();
+  const long jobs = jobs_->running();
+  // Then cancel what is left: calls end CANCELLED, running jobs are stored as QUEUED.
+  server_->Shutdown(std::chrono::system_clock::now());
+  jobs_->stop(std::chrono::steady_clock::now());
+  server_->Wait();
+  std::fprintf(stderr, "pfem-server: drained in %.3f s (%d calls and %ld jobs were cut short)\n",
+               since(), calls, jobs);
+}
+}  // namespace pfem::server

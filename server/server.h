@@ -1,0 +1,51 @@
+#pragma once
+// A running pfem-server: the store, the job manager, the cache, the gRPC server with
+// pfem.v1.GradientService, grpc.health.v1.Health and reflection. Used by main.cpp and, in
+// process, by the integration tests.
+#include <grpcpp/grpcpp.h>
+
+#include <memory>
+#include <string>
+
+#include "server/auth.h"
+#include "server/job_manager.h"
+#include "server/options.h"
+#include "server/result_cache.h"
+#include "server/service.h"
+#include "server/store.h"
+
+namespace pfem::server {
+
+class Server {
+ public:
+  // Opens the store, re-queues interrupted jobs, starts the workers and listens. Throws
+  // std::runtime_error (invalid options, unreadable token or TLS files, port in use).
+  explicit Server(ServerOptions options, JobManager::RunFunction run = {});
+  ~Server();  // shutdown() if not done
+  Server(const Server&) = delete;
+  Server& operator=(const Server&) = delete;
+
+  int port() const { return port_; }
+  // "host:port" actually bound.
+  std::string address() const;
+
+  // Drains: health NOT_SERVING, no new jobs, in-flight calls and running jobs get until the
+  // grace period ends, then jobs still running are interrupted and stored as QUEUED.
+  void shutdown();
+
+  JobManager& jobs() { return *jobs_; }
+  ResultCache& cache() { return *cache_; }
+
+ private:
+  ServerOptions options_;
+  std::unique_ptr<Store> store_;
+  std::unique_ptr<JobManager> jobs_;
+  std::unique_ptr<ResultCache> cache_;
+  TokenAuth auth_;
+  std::unique_ptr<GradientService> service_;
+  std::unique_ptr<grpc::Server> server_;
+  int port_ = 0;
+  bool shut_down_ = false;
+};
+
+}  // namespace pfem::server

@@ -1,0 +1,321 @@
+#include "server/service.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "engine/io/model_io.h"
+#include "server/convert.h"
+#include "server/functional.h"
+#include "server/hashing.h"
+#include "server/requests.h"
+#include "server/status.h"
+
+namespace pfem::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+bool finished(pfem::v1::JobState s) {
+  return s == pfem::v1::JOB_STATE_SUCCEEDED || s == pfem::v1::JOB_STATE_FAILED ||
+         s == pfem::v1::JOB_STATE_CANCELLED;
+}
+
+void require_job_id(const pfem::v1::JobRequest& request) {
+  if (request.job_id().empty()) throw_invalid({{"job_id", "required"}});
+}
+
+FunctionalKind kind_of(pfem::v1::Functional::Kind kind) {
+  switch (kind) {
+    case pfem::v1::Functional::KIND_VALUE_AT: return FunctionalKind::kValueAt;
+    case pfem::v1::Functional::KIND_MAX: return FunctionalKind::kMax;
+    case pfem::v1::Functional::KIND_MIN: return FunctionalKind::kMin;
+    case pfem::v1::Functional::KIND_MAX_ABS: return FunctionalKind::kMaxAbs;
+    default: return FunctionalKind::kFinal;
+  }
+}
+
+// Streams one column in slices of GradientService::kChunkValues values.
+template <typename Values>
+bool write_column(grpc::ServerWriter<pfem::v1::GetResultResponse>* writer,
+                  pfem::v1::HistoriesKind kind, int column, const Values& values) {
+  const int n = values.size();
+  int offset = 0;
+  do {
+    pfem::v1::GetResultResponse message;
+    auto* chunk = message.mutable_chunk();
+    chunk->set_kind(kind);
+    chunk->set_column(column);
+    chunk->set_offset(offset);
+    const int end = std::min(n, offset + GradientService::kChunkValues);
+    chunk->mutable_values()->Reserve(end - offset);
+    for (int i = offset; i < end; ++i) chunk->add_values(values[i]);
+    if (!writer->Write(message)) return false;
+    offset = end;
+  } while (offset < n);
+  return true;
+}
+
+}  // namespace
+
+grpc::Status GradientService::handle(grpc::ServerContext* context,
+                                     const std::function<grpc::Status()>& body) {
+  if (draining_) return {grpc::StatusCode::UNAVAILABLE, "server is shutting down"};
+  ++in_flight_;
+  const grpc::Status status = guarded([&] {
+    auth_.require(*context);
+    return body();
+  });
+  --in_flight_;
+  return status;
+}
+
+grpc::Status GradientService::ValidateModel(grpc::ServerContext* context,
+                                            const pfem::v1::ValidateModelRequest* request,
+                                            pfem::v1::ValidateModelResponse* response) {
+  return handle(context, [&] {
+    for (const auto& e : validate_model(request->model())) {
+      auto* fe = response->add_errors();
+      fe->set_path(e.path);
+      fe->set_message(e.message);
+    }
+    response->set_valid(response->errors().empty());
+    response->set_estimated_particles(estimate_particles(request->model()));
+    response->set_steps(count_steps(request->model(), std::nullopt, std::nullopt));
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status GradientService::SubmitJob(grpc::ServerContext* context,
+                                        const pfem::v1::SubmitJobRequest* request,
+                                        pfem::v1::SubmitJobResponse* response) {
+  return handle(context, [&] {
+    if (request->has_timeout_seconds() &&
+        !(request->timeout_seconds() > 0.0 && std::isfinite(request->timeout_seconds()))) {
+      throw_invalid({{"timeout_seconds", "must be > 0 and finite"}});
+    }
+    check_run_request(request->model(), request->parameter_values(), request->options(),
+                      limits_);
+    response->set_job_id(jobs_.submit(*request));
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status GradientService::WatchJob(grpc::ServerContext* context,
+                                       const pfem::v1::JobRequest* request,
+                                       grpc::ServerWriter<pfem::v1::Job>* writer) {
+  return handle(context, [&] {
+    require_job_id(*request);
+    constexpr auto kMinInterval = std::chrono::milliseconds(100);
+    std::uint64_t version = 0;
+    std::uint64_t sent_version = ~std::uint64_t{0};
+    auto last_sent = Clock::now() - kMinInterval;
+    for (;;) {
+      const auto job = jobs_.wait_for_change(request->job_id(), &version, kMinInterval);
+      if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "watch cancelled");
+      const bool done = finished(job.state());
+      if (version != sent_version && (done || Clock::now() - last_sent >= kMinInterval)) {
+        if (!writer->Write(job)) return grpc::Status(grpc::StatusCode::CANCELLED, "watcher left");
+        sent_version = version;
+        last_sent = Clock::now();
+      }
+      if (done) return grpc::Status::OK;
+      if (jobs_.draining()) {
+        return grpc::Status(grpc::StatusCode::UNAVAILABLE,
+                            "server is shutting down; the job is kept and resumes on restart");
+      }
+    }
+  });
+}
+
+grpc::Status GradientService::GetJob(grpc::ServerContext* context,
+                                     const pfem::v1::JobRequest* request,
+                                     pfem::v1::Job* response) {
+  return handle(context, [&] {
+    require_job_id(*request);
+    *response = jobs_.get(request->job_id());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status GradientService::GetResult(grpc::ServerContext* context,
+                                        const pfem::v1::JobRequest* request,
+                                        grpc::ServerWriter<pfem::v1::GetResultResponse>* writer) {
+  return handle(context, [&] {
+    require_job_id(*request);
+    const auto job = jobs_.get(request->job_id());
+    if (!finished(job.state())) {
+      throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
+                         "job '" + job.id() + "' is " + pfem::v1::JobState_Name(job.state()) +
+                             "; its result is available once it has finished");
+    }
+    const auto result = store_.get_result(job.id());
+    if (!result) {
+      throw ServiceError(grpc::StatusCode::NOT_FOUND,
+                         "job '" + job.id() + "' has no result (" +
+                             pfem::v1::JobState_Name(job.state()) + ": " +
+                             job.error().message() + ")");
+    }
+    pfem::v1::GetResultResponse first;
+    auto* header = first.mutable_header();
+    *header->mutable_job() = job;
+    *header->mutable_summary() = result->summary();
+    for (const auto& c : result->responses().columns()) header->add_response_columns(c.name());
+    for (const auto& c : result->sensitivities().columns()) {
+      header->add_sensitivity_columns(c.name());
+    }
+    header->set_rows(result->responses().time_size());
+    if (!writer->Write(first)) return grpc::Status(grpc::StatusCode::CANCELLED, "reader left");
+    const auto send = [&](pfem::v1::HistoriesKind kind, const pfem::v1::Histories& h) {
+      if (!write_column(writer, kind, -1, h.time())) return false;
+      for (int j = 0; j < h.columns_size(); ++j) {
+        if (!write_column(writer, kind, j, h.columns(j).values())) return false;
+      }
+      return true;
+    };
+    if (!send(pfem::v1::HISTORIES_KIND_RESPONSES, result->responses())) {
+      return grpc::Status(grpc::StatusCode::CANCELLED, "reader left");
+    }
+    if (result->sensitivities().columns_size() > 0 &&
+        !send(pfem::v1::HISTORIES_KIND_SENSITIVITIES, result->sensitivities())) {
+      return grpc::Status(grpc::StatusCode::CANCELLED, "reader left");
+    }
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status GradientService::CancelJob(grpc::ServerContext* context,
+                                        const pfem::v1::JobRequest* request,
+                                        pfem::v1::Job* response) {
+  return handle(context, [&] {
+    require_job_id(*request);
+    *response = jobs_.cancel(request->job_id());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status GradientService::ListJobs(grpc::ServerContext* context,
+                                       const pfem::v1::ListJobsRequest* request,
+                                       pfem::v1::ListJobsResponse* response) {
+  return handle(context, [&] {
+    if (request->limit() < 0) throw_invalid({{"limit", "must be >= 0"}});
+    const int limit = request->limit() == 0 ? 100 : request->limit();
+    for (auto& job : store_.list_jobs(request->state(), limit)) {
+      if (!finished(job.state())) {
+        try {
+          job = jobs_.get(job.id());  // the live snapshot (progress) of an active job
+        } catch (const ServiceError&) {
+        }
+      }
+      *response->add_jobs() = std::move(job);
+    }
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status GradientService::PutModel(grpc::ServerContext* context,
+                                       const pfem::v1::PutModelRequest* request,
+                                       pfem::v1::PutModelResponse* response) {
+  return handle(context, [&] {
+    const auto errors = validate_model(request->model());
+    if (!errors.empty()) throw_invalid(errors);
+    const std::string id = sha256_hex(canonical_bytes(request->model()));
+    store_.put_model(id, request->model());
+    response->set_model_id(id);
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status GradientService::Evaluate(grpc::ServerContext* context,
+                                       const pfem::v1::EvaluateRequest* request,
+                                       pfem::v1::EvaluateResponse* response) {
+  const auto started = Clock::now();
+  return handle(context, [&] {
+    pfem::v1::Model model;
+    switch (request->source_case()) {
+      case pfem::v1::EvaluateRequest::kModel:
+        model = request->model();
+        break;
+      case pfem::v1::EvaluateRequest::kModelId: {
+        auto stored = store_.get_model(request->model_id());
+        if (!stored) {
+          throw ServiceError(grpc::StatusCode::NOT_FOUND,
+                             "no model '" + request->model_id() + "' (store it with PutModel)");
+        }
+        model = std::move(*stored);
+        break;
+      }
+      default:
+        throw_invalid({{"model", "required (or model_id)"}});
+    }
+    pfem::v1::RunOptions options;
+    if (request->has_t_end()) options.set_t_end(request->t_end());
+    if (request->has_dt()) options.set_dt(request->dt());
+    if (request->has_fdm_eps()) options.set_fdm_eps(request->fdm_eps());
+    options.set_sensitivity(request->sensitivity() == pfem::v1::SENSITIVITY_METHOD_UNSPECIFIED
+                                ? pfem::v1::SENSITIVITY_METHOD_DDM
+                                : request->sensitivity());
+    *options.mutable_params() = request->params();
+
+    auto functional_errors = check_functionals(model, request->functionals());
+    model = check_run_request(std::move(model), request->parameter_values(), options, limits_,
+                              "", std::move(functional_errors));
+    const std::string key =
+        sha256_hex(canonical_bytes(model) + '\n' + canonical_bytes(options));
+    const auto deadline = context->deadline();
+    const auto should_stop = [context, deadline] {
+      if (context->IsCancelled()) return grpc::StatusCode::CANCELLED;
+      if (std::chrono::system_clock::now() > deadline) return grpc::StatusCode::DEADLINE_EXCEEDED;
+      return grpc::StatusCode::OK;
+    };
+    const auto compute = [&] {
+      return jobs_.run_now(model, to_run_options(options, SensitivityMethod::kDdm), should_stop);
+    };
+    bool hit = false;
+    const auto result = request->no_cache()
+                            ? std::make_shared<const RunResult>(compute())
+                            : cache_.get_or_compute(key, compute, &hit);
+    const auto& summary = result->summary;
+    if (summary.status == RunStatus::kCancelled) {
+      throw ServiceError(grpc::StatusCode::CANCELLED, "the run was cancelled: " + summary.message);
+    }
+    if (summary.status == RunStatus::kFailed) {
+      throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
+                         "the simulation failed at step " + std::to_string(summary.failed_step) +
+                             " (t = " + std::to_string(summary.failed_time) +
+                             " s): " + summary.message);
+    }
+    const std::vector<std::string>& params = summary.parameters;
+    const bool with_gradient = options.sensitivity() != pfem::v1::SENSITIVITY_METHOD_NONE;
+    const std::vector<std::string> no_params;
+    for (int i = 0; i < request->functionals_size(); ++i) {
+      const auto& f = request->functionals(i);
+      FunctionalSpec spec{f.recorder(), kind_of(f.kind()), f.time()};
+      FunctionalValue v;
+      try {
+        v = evaluate_functional(result->responses, result->sensitivities,
+                                with_gradient ? params : no_params, spec);
+      } catch (const FunctionalError& e) {
+        throw_invalid({{"functionals[" + std::to_string(i) + "]." + e.field(), e.what()}});
+      }
+      auto* out = response->add_values();
+      out->set_name(f.name().empty() ? f.recorder() + ":" + functional_kind_name(spec.kind)
+                                     : f.name());
+      out->set_value(v.value);
+      out->set_time(v.time);
+      out->mutable_gradient()->Assign(v.gradient.begin(), v.gradient.end());
+    }
+    if (with_gradient) {
+      for (const auto& p : params) response->add_parameters(p);
+    }
+    response->mutable_parameter_values()->Assign(summary.parameter_values.begin(),
+                                                 summary.parameter_values.end());
+    response->set_cached(hit);
+    response->set_run_key(key);
+    *response->mutable_summary() = to_proto(summary);
+    response->set_wall_seconds(
+        std::chrono::duration<double>(Clock::now() - started).count());
+    return grpc::Status::OK;
+  });
+}
+
+}  // namespace pfem::server

@@ -1,0 +1,67 @@
+#pragma once
+// pfem.v1.GradientService handlers. Each one is thin: authenticate, check the request, call
+// the job manager / store / cache, convert the answer; errors are converted once by
+// guarded() (server/status.h), so no exception crosses into gRPC.
+#include <grpcpp/grpcpp.h>
+
+#include <atomic>
+#include <functional>
+
+#include "pfem/v1/service.grpc.pb.h"
+#include "server/auth.h"
+#include "server/job_manager.h"
+#include "server/limits.h"
+#include "server/result_cache.h"
+#include "server/store.h"
+
+namespace pfem::server {
+
+class GradientService final : public pfem::v1::GradientService::Service {
+ public:
+  // All references must outlive the service.
+  GradientService(Store& store, JobManager& jobs, ResultCache& cache, const TokenAuth& auth,
+                  const Limits& limits)
+      : store_(store), jobs_(jobs), cache_(cache), auth_(auth), limits_(limits) {}
+
+  grpc::Status ValidateModel(grpc::ServerContext* context,
+                             const pfem::v1::ValidateModelRequest* request,
+                             pfem::v1::ValidateModelResponse* response) override;
+  grpc::Status SubmitJob(grpc::ServerContext* context, const pfem::v1::SubmitJobRequest* request,
+                         pfem::v1::SubmitJobResponse* response) override;
+  grpc::Status WatchJob(grpc::ServerContext* context, const pfem::v1::JobRequest* request,
+                        grpc::ServerWriter<pfem::v1::Job>* writer) override;
+  grpc::Status GetJob(grpc::ServerContext* context, const pfem::v1::JobRequest* request,
+                      pfem::v1::Job* response) override;
+  grpc::Status GetResult(grpc::ServerContext* context, const pfem::v1::JobRequest* request,
+                         grpc::ServerWriter<pfem::v1::GetResultResponse>* writer) override;
+  grpc::Status CancelJob(grpc::ServerContext* context, const pfem::v1::JobRequest* request,
+                         pfem::v1::Job* response) override;
+  grpc::Status ListJobs(grpc::ServerContext* context, const pfem::v1::ListJobsRequest* request,
+                        pfem::v1::ListJobsResponse* response) override;
+  grpc::Status PutModel(grpc::ServerContext* context, const pfem::v1::PutModelRequest* request,
+                        pfem::v1::PutModelResponse* response) override;
+  grpc::Status Evaluate(grpc::ServerContext* context, const pfem::v1::EvaluateRequest* request,
+                        pfem::v1::EvaluateResponse* response) override;
+
+  // Values per GetResult chunk message (8 bytes each).
+  static constexpr int kChunkValues = 65536;
+
+  // From now on every new call gets UNAVAILABLE; calls already running go on.
+  void begin_drain() { draining_ = true; }
+  // Calls inside a handler right now.
+  int in_flight() const { return in_flight_.load(); }
+
+ private:
+  // Runs one handler body: refuses it while draining, counts it, converts errors (guarded).
+  grpc::Status handle(grpc::ServerContext* context, const std::function<grpc::Status()>& body);
+
+  Store& store_;
+  JobManager& jobs_;
+  ResultCache& cache_;
+  const TokenAuth& auth_;
+  const Limits& limits_;
+  std::atomic<bool> draining_{false};
+  std::atomic<int> in_flight_{0};
+};
+
+}  // namespace pfem::server

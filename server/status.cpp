@@ -1,0 +1,77 @@
+#include "server/status.h"
+
+#include <iostream>
+#include <new>
+
+#include "server/store.h"
+
+namespace pfem::server {
+
+void throw_invalid(const std::vector<FieldError>& errors) {
+  std::string message;
+  for (const auto& e : errors) {
+    if (!message.empty()) message += '\n';
+    message += e.to_string();
+  }
+  throw ServiceError(grpc::StatusCode::INVALID_ARGUMENT, message);
+}
+
+grpc::Status status_from_current_exception() {
+  try {
+    throw;
+  } catch (const ServiceError& e) {
+    return {e.code(), e.what()};
+  } catch (const ModelError& e) {
+    std::string message;
+    for (const auto& fe : e.errors()) {
+      if (!message.empty()) message += '\n';
+      message += fe.to_string();
+    }
+    if (message.empty()) message = e.what();
+    return {grpc::StatusCode::INVALID_ARGUMENT, message};
+  } catch (const StoreError& e) {
+    std::cerr << "pfem-server: store error: " << e.what() << '\n';
+    return {grpc::StatusCode::INTERNAL, std::string("store: ") + e.what()};
+  } catch (const std::bad_alloc&) {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED, "out of memory"};
+  } catch (const std::exception& e) {
+    std::cerr << "pfem-server: internal error: " << e.what() << '\n';
+    return {grpc::StatusCode::INTERNAL, "internal error"};
+  } catch (...) {
+    std::cerr << "pfem-server: internal error (unknown exception)\n";
+    return {grpc::StatusCode::INTERNAL, "internal error"};
+  }
+}
+
+grpc::Status guarded(const std::function<grpc::Status()>& body) {
+  try {
+    return body();
+  } catch (...) {
+    return status_from_current_exception();
+  }
+}
+
+std::string status_code_name(grpc::StatusCode code) {
+  switch (code) {
+    case grpc::StatusCode::OK: return "OK";
+    case grpc::StatusCode::CANCELLED: return "CANCELLED";
+    case grpc::StatusCode::UNKNOWN: return "UNKNOWN";
+    case grpc::StatusCode::INVALID_ARGUMENT: return "INVALID_ARGUMENT";
+    case grpc::StatusCode::DEADLINE_EXCEEDED: return "DEADLINE_EXCEEDED";
+    case grpc::StatusCode::NOT_FOUND: return "NOT_FOUND";
+    case grpc::StatusCode::ALREADY_EXISTS: return "ALREADY_EXISTS";
+    case grpc::StatusCode::PERMISSION_DENIED: return "PERMISSION_DENIED";
+    case grpc::StatusCode::RESOURCE_EXHAUSTED: return "RESOURCE_EXHAUSTED";
+    case grpc::StatusCode::FAILED_PRECONDITION: return "FAILED_PRECONDITION";
+    case grpc::StatusCode::ABORTED: return "ABORTED";
+    case grpc::StatusCode::OUT_OF_RANGE: return "OUT_OF_RANGE";
+    case grpc::StatusCode::UNIMPLEMENTED: return "UNIMPLEMENTED";
+    case grpc::StatusCode::INTERNAL: return "INTERNAL";
+    case grpc::StatusCode::UNAVAILABLE: return "UNAVAILABLE";
+    case grpc::StatusCode::DATA_LOSS: return "DATA_LOSS";
+    case grpc::StatusCode::UNAUTHENTICATED: return "UNAUTHENTICATED";
+    default: return "UNKNOWN";
+  }
+}
+
+}  // namespace pfem::server

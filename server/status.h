@@ -1,0 +1,46 @@
+#pragma once
+// The service's one place where errors become gRPC statuses (style practice 8).
+//
+// Handlers throw ServiceError (or let pfem::ModelError, StoreError and std::exception escape);
+// guarded() runs a handler body, catches everything and converts it once, so no exception
+// ever crosses into gRPC. Mapping:
+//   ServiceError(code, msg)  -> code, msg
+//   pfem::ModelError         -> INVALID_ARGUMENT, every "path: message", one per line
+//   StoreError               -> INTERNAL "store: ..."
+//   std::bad_alloc           -> RESOURCE_EXHAUSTED "out of memory"
+//   anything else            -> INTERNAL (the detail goes to the server log only)
+#include <grpcpp/support/status.h>
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "engine/io/model_io.h"
+
+namespace pfem::server {
+
+// An error with the gRPC status it maps to.
+class ServiceError : public std::runtime_error {
+ public:
+  ServiceError(grpc::StatusCode code, const std::string& message)
+      : std::runtime_error(message), code_(code) {}
+  grpc::StatusCode code() const { return code_; }
+
+ private:
+  grpc::StatusCode code_;
+};
+
+// INVALID_ARGUMENT carrying field errors (message: one "path: message" per line).
+[[noreturn]] void throw_invalid(const std::vector<FieldError>& errors);
+
+// The status of the exception currently being handled (call inside a catch block).
+grpc::Status status_from_current_exception();
+
+// Runs body; returns its status, or the converted exception it threw.
+grpc::Status guarded(const std::function<grpc::Status()>& body);
+
+// "INVALID_ARGUMENT", "NOT_FOUND", ... (for logs and the CLI).
+std::string status_code_name(grpc::StatusCode code);
+
+}  // namespace pfem::server
