@@ -1,5 +1,7 @@
 #pragma once
 // The engine's domain of one analysis, built from a pfem.v1.Model by engine/io/model_builder.
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,7 @@ struct Problem {
   double gx = 0.0, gy = -9.81;
   double h = 0.0, alpha = 1.2;
   double removal_distance = 0.2;  // relative to h
+  double insertion_length = 1.6;  // relative to h
   double dt = 0.0, t_end = 0.0;
   double newton_tolerance = 1e-10;
   int newton_max_iterations = 50;
@@ -38,6 +41,7 @@ struct Problem {
   int vtk_every = 10;
   Box domain;
   NodeState nodes;
+  std::vector<std::array<std::int32_t, 2>> wall_segments;  // node pairs of every wall piece
   std::vector<RecorderSpec> recorders;
   std::vector<ParameterSpec> parameters;
 };

@@ -65,7 +65,8 @@ struct RunSummary {
   double solve_seconds = 0.0;
   long newton_iterations = 0;
   int substeps = 0;         // steps split in halves after a failed Newton solve
-  int removed_particles = 0;  // taken out for coming too close to another node
+  int removed_particles = 0;   // taken out for coming too close to another node
+  int inserted_particles = 0;  // added in the middle of stretched edges
   int particles = 0;
   int max_elements = 0;
   double fluid_area_initial = 0.0;

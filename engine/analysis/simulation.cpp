@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "engine/analysis/recorders.h"
-#include "engine/mesh/particle_removal.h"
+#include "engine/mesh/particle_spacing.h"
 #include "engine/io/vtk_writer.h"
 #include "engine/solve/fluid_step.h"
 
@@ -54,6 +54,20 @@ StepReport advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettin
   return total;
 }
 
+// New particles at the middle of the edges that have grown longer than insertion_length*h,
+// with the mean velocity and pressure of the edge's ends (a wall end has v = 0).
+int insert_particles(const mesh::FluidMesh& mesh, const Problem& problem, NodeState& nodes) {
+  if (problem.insertion_length <= 0.0) return 0;
+  const auto edges = mesh::edges_to_split(mesh, nodes.x, nodes.y, nodes.kind, problem.insertion_length * problem.h);
+  for (const auto& [a, b] : edges) {
+    const int i = nodes.add(0.5 * (nodes.x[a] + nodes.x[b]), 0.5 * (nodes.y[a] + nodes.y[b]), mesh::NodeKind::Fluid,
+                            0.5 * (nodes.vx[a] + nodes.vx[b]), 0.5 * (nodes.vy[a] + nodes.vy[b]));
+    nodes.x0[i] = nodes.x[i], nodes.y0[i] = nodes.y[i];  // displacements count from its birth
+    nodes.p[i] = 0.5 * (nodes.p[a] + nodes.p[b]);
+  }
+  return static_cast<int>(edges.size());
+}
+
 }  // namespace
 
 SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
@@ -67,7 +81,8 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
 
   NodeState nodes = problem.nodes;
   for (const auto k : nodes.kind) sum.particles += k == mesh::NodeKind::Fluid;
-  const mesh::RemeshOptions remesh_options{problem.h, problem.alpha, problem.gx, problem.gy};
+  const mesh::RemeshOptions remesh_options{problem.h, problem.alpha, problem.gx, problem.gy,
+                                           problem.wall_segments};
   StepSettings settings;
   settings.dt = problem.dt;
   settings.tolerance = problem.newton_tolerance;
@@ -77,6 +92,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   settings.gx = problem.gx;
   settings.gy = problem.gy;
   settings.threads = std::max(1, options.threads);
+  settings.walls = problem.wall_segments;
   UnifiedStep step;
 
   const int vtk_every = options.vtk_every.value_or(problem.vtk_every);
@@ -125,6 +141,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
       sum.fluid_area_final = fluid_area(mesh, nodes);
       sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind,
                                                             problem.removal_distance * problem.h);
+      sum.inserted_particles += insert_particles(mesh, problem, nodes);
       if (options.progress) {
         Progress pr;
         pr.step = n;

@@ -25,13 +25,17 @@ double distance_to_segment(double px, double py, const Segment& s) {
 }
 
 // Wall nodes at spacing <= h along each polyline; corners shared by two walls appear once.
-std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState& nodes) {
+// Returns the wall lines (for placing particles) and records the node pairs of every wall
+// piece in nodes' segment list.
+std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState& nodes,
+                               std::vector<std::array<std::int32_t, 2>>& pieces) {
   std::vector<Segment> segments;
   const double merge = 1e-6 * h;
-  auto add_unique = [&](double x, double y) {
+  auto add_unique = [&](double x, double y) -> std::int32_t {
     for (std::size_t i = 0; i < nodes.size(); ++i)
-      if (nodes.kind[i] == NodeKind::Wall && std::hypot(nodes.x[i] - x, nodes.y[i] - y) < merge) return;
-    nodes.add(x, y, NodeKind::Wall);
+      if (nodes.kind[i] == NodeKind::Wall && std::hypot(nodes.x[i] - x, nodes.y[i] - y) < merge)
+        return static_cast<std::int32_t>(i);
+    return nodes.add(x, y, NodeKind::Wall);
   };
   for (const auto& w : model.walls()) {
     const int n = w.points_size();
@@ -41,10 +45,13 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
       const auto& b = w.points((k + 1) % n);
       segments.push_back({a.x(), a.y(), b.x(), b.y()});
       const double len = std::hypot(b.x() - a.x(), b.y() - a.y());
-      const int pieces = std::max(1, static_cast<int>(std::ceil(len / h - 1e-9)));
-      for (int j = 0; j <= pieces; ++j) {
-        const double t = static_cast<double>(j) / pieces;
-        add_unique(a.x() + t * (b.x() - a.x()), a.y() + t * (b.y() - a.y()));
+      const int count_pieces = std::max(1, static_cast<int>(std::ceil(len / h - 1e-9)));
+      std::int32_t previous = -1;
+      for (int j = 0; j <= count_pieces; ++j) {
+        const double t = static_cast<double>(j) / count_pieces;
+        const std::int32_t node = add_unique(a.x() + t * (b.x() - a.x()), a.y() + t * (b.y() - a.y()));
+        if (previous >= 0) pieces.push_back({previous, node});
+        previous = node;
       }
     }
   }
@@ -124,6 +131,7 @@ Problem build_problem(const pfem::v1::Model& model) {
   pb.h = model.mesh().h();
   pb.alpha = model.mesh().has_alpha() ? model.mesh().alpha() : 1.2;
   if (model.mesh().has_removal_distance()) pb.removal_distance = model.mesh().removal_distance();
+  if (model.mesh().has_insertion_length()) pb.insertion_length = model.mesh().insertion_length();
   const auto& a = model.analysis();
   pb.dt = a.dt();
   pb.t_end = a.t_end();
@@ -141,7 +149,7 @@ Problem build_problem(const pfem::v1::Model& model) {
     pb.domain = {wb.xmin - grow, wb.ymin - grow, wb.xmax + grow, wb.ymax + grow};
   }
 
-  const auto segments = add_walls(model, pb.h, pb.nodes);
+  const auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments);
   const std::size_t first_particle = pb.nodes.size();
   std::vector<FieldError> errors;
   for (int i = 0; i < model.fluid_regions_size(); ++i) {

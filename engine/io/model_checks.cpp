@@ -83,6 +83,11 @@ void ModelChecker::check_mesh() {
     const double d = model_.mesh().removal_distance();
     if (!std::isfinite(d) || d < 0.0 || d > 0.5) error("mesh.removal_distance", "must be in [0, 0.5]");
   }
+  if (model_.mesh().has_insertion_length()) {
+    const double l = model_.mesh().insertion_length();
+    if (!std::isfinite(l) || (l != 0.0 && (l < 1.5 || l > 3.0)))
+      error("mesh.insertion_length", "must be 0 (off) or in [1.5, 3]");
+  }
 }
 
 void ModelChecker::check_walls() {

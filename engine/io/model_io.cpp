@@ -2,6 +2,7 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -32,7 +33,9 @@ pfem::v1::Model parse_model_json(std::string_view json) {
   const auto status = google::protobuf::util::JsonStringToMessage(
       google::protobuf::StringPiece(json.data(), json.size()), &model, options);
   if (!status.ok()) {
-    throw ModelError("model", "invalid JSON: " + std::string(status.message()));
+    std::string message(status.message());  // protobuf's message spans lines (text, caret)
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    throw ModelError("model", "invalid JSON: " + message);
   }
   return model;
 }

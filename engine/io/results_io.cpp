@@ -62,6 +62,7 @@ std::string summary_json(const RunSummary& s) {
     << "  \"newton_iterations\": " << s.newton_iterations << ",\n"
     << "  \"substeps\": " << s.substeps << ",\n"
     << "  \"removed_particles\": " << s.removed_particles << ",\n"
+    << "  \"inserted_particles\": " << s.inserted_particles << ",\n"
     << "  \"particles\": " << s.particles << ",\n"
     << "  \"max_elements\": " << s.max_elements << ",\n"
     << "  \"fluid_area_initial\": " << number(s.fluid_area_initial) << ",\n"

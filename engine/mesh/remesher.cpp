@@ -1,5 +1,7 @@
 #include "engine/mesh/remesher.h"
 
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_face_base_2.h>
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_data_structure_2.h>
@@ -11,18 +13,45 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace pfem::mesh {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+// Vertex info: the node index.
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::int32_t, Kernel>;
-// Face info: 1 when the face passed the alpha test and touches a fluid particle ("kept").
-using FaceBase = CGAL::Triangulation_face_base_with_info_2<std::uint8_t, Kernel>;
+// Face info: 1 when the face passed the alpha test and touches a fluid particle ("kept");
+// the constrained face base adds the per-edge constraint flags.
+using FaceBase = CGAL::Constrained_triangulation_face_base_2<
+    Kernel, CGAL::Triangulation_face_base_with_info_2<std::uint8_t, Kernel>>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
-using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
+// Intersection tag: constraints may meet at nodes (walls sharing a corner node, a beam
+// clamped at a wall node) and may pass through nodes lying on them, but must not cross in
+// their interiors. This tag handles exactly that with exact predicates and never constructs a
+// point, so every vertex stays an input node with a valid index. (Exact_predicates_tag would
+// accept crossings by inventing a vertex at a rounded intersection point: a vertex with no
+// node index, useless to the solver. Exact_intersections_tag needs an exact kernel: slower.)
+// A crossing raises Intersection_of_constraints_exception before the triangulation is
+// modified for that sub-segment; remesh() catches it and leaves the rest of the segment out.
+using Itag = CGAL::No_constraint_intersection_requiring_constructions_tag;
+using Delaunay = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, Itag>;
+// The points are inserted into a plain Delaunay triangulation over the same data structure
+// (its hole-based insertion is about 1.5x faster than the constrained one's edge flips),
+// which is then moved into the constrained triangulation: both derive from the same
+// Triangulation_2<Kernel, Tds>, which holds all their state (traits, data structure, infinite
+// vertex), and a Delaunay triangulation without constraints is a valid constrained one.
+using PlainDelaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
+using TriangulationBase = CGAL::Triangulation_2<Kernel, Tds>;
+// (The constrained triangulation adds only a virtual-table pointer.)
+static_assert(std::is_base_of_v<TriangulationBase, Delaunay> &&
+                  std::is_base_of_v<TriangulationBase, PlainDelaunay> &&
+                  sizeof(PlainDelaunay) == sizeof(TriangulationBase) &&
+                  sizeof(Delaunay) <= sizeof(TriangulationBase) + sizeof(void*),
+              "Triangulation_2::swap() must move all the state (did CGAL change?)");
 using Point = Kernel::Point_2;
+using VertexHandle = Delaunay::Vertex_handle;
 
 void validate(std::span<const double> x, std::span<const double> y,
               std::span<const NodeKind> kind, const RemeshOptions& options) {
@@ -48,6 +77,16 @@ void validate(std::span<const double> x, std::span<const double> y,
                                   " has a non-finite coordinate");
     }
   }
+  const auto n = static_cast<std::int64_t>(x.size());
+  for (std::size_t c = 0; c < options.constraints.size(); ++c) {
+    const auto [a, b] = options.constraints[c];
+    if (a < 0 || a >= n || b < 0 || b >= n || a == b) {
+      throw std::invalid_argument("remesh: constraint " + std::to_string(c) + " (" +
+                                  std::to_string(a) + ", " + std::to_string(b) +
+                                  ") needs two different node indices in [0, " +
+                                  std::to_string(n) + ")");
+    }
+  }
 }
 
 // The alpha test: circumradius R = a*b*c / (4*area) <= max_radius. Computed in double from
@@ -67,9 +106,11 @@ bool passes_alpha_test(const Point& p0, const Point& p1, const Point& p2, double
 // CGAL merges coincident points into one vertex, and its range insert leaves on that vertex
 // the info of whichever duplicate came last in its spatial-sort order. Make the choice
 // deterministic: the vertex carries the lowest input index among the coincident points, so
-// every later duplicate ends up in no triangle. Runs only when duplicates were found.
+// every later duplicate ends up in no triangle. Runs only when duplicates were found. When
+// vertex_of is not empty, it also maps every coincident node to the shared vertex.
 void assign_lowest_duplicate_index(Delaunay& tri, std::span<const double> x,
-                                   std::span<const double> y, std::span<const NodeKind> kind) {
+                                   std::span<const double> y, std::span<const NodeKind> kind,
+                                   std::vector<VertexHandle>& vertex_of) {
   std::vector<std::int32_t> order;
   order.reserve(x.size());
   for (std::size_t i = 0; i < x.size(); ++i)
@@ -86,7 +127,39 @@ void assign_lowest_duplicate_index(Delaunay& tri, std::span<const double> x,
       return x[a] < px || (x[a] == px && y[a] < py);
     });
     v->info() = *first;  // exists: the vertex's point is one of the inputs
+    if (vertex_of.empty()) continue;
+    for (auto it = first; it != order.end() && x[*it] == px && y[*it] == py; ++it)
+      vertex_of[*it] = v;
   }
+}
+
+// Forces the constraint segments into the triangulation by vertex handles (no point
+// location). vertex_of[i]: the vertex of node i, null for Removed nodes.
+void insert_constraints(Delaunay& tri, std::span<const std::array<std::int32_t, 2>> constraints,
+                        const std::vector<VertexHandle>& vertex_of) {
+  for (const auto& [a, b] : constraints) {
+    const VertexHandle va = vertex_of[a], vb = vertex_of[b];
+    if (va == VertexHandle() || vb == VertexHandle() || va == vb) continue;
+    try {
+      tri.insert_constraint(va, vb);
+    } catch (const Delaunay::Intersection_of_constraints_exception&) {
+      // Crosses an earlier constraint: the caller's geometry is inconsistent. The parts
+      // already inserted (up to a node lying on the segment) stay; the triangulation is valid.
+    }
+  }
+}
+
+// Edge e of the kept face f (the edge opposite vertex e) is on the boundary of the kept region
+// when the face across it is infinite or not kept. It is a free edge when it is on the
+// boundary, is not a constraint (a wall or beam, whatever lies beyond it) and has a fluid end
+// (an edge between two wall or structure nodes is a wall).
+bool is_free_edge(const Delaunay& tri, Delaunay::Face_handle f, int e,
+                  std::span<const NodeKind> kind) {
+  const auto across = f->neighbor(e);
+  if (!tri.is_infinite(across) && across->info()) return false;
+  if (f->is_constrained(e)) return false;
+  return kind[f->vertex(Delaunay::ccw(e))->info()] == NodeKind::Fluid ||
+         kind[f->vertex(Delaunay::cw(e))->info()] == NodeKind::Fluid;
 }
 
 }  // namespace
@@ -106,8 +179,22 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
     if (kind[i] != NodeKind::Removed) points.emplace_back(Point(x[i], y[i]), static_cast<std::int32_t>(i));
   }
   Delaunay tri;
-  tri.insert(points.begin(), points.end());  // spatially sorted bulk insert
-  if (tri.number_of_vertices() < points.size()) assign_lowest_duplicate_index(tri, x, y, kind);
+  {
+    PlainDelaunay plain;
+    plain.insert(points.begin(), points.end());  // spatially sorted bulk insert
+    static_cast<TriangulationBase&>(tri).swap(plain);
+  }
+  // Constraints matter only when there are faces (dimension 2); they are inserted by vertex
+  // handle, so the node -> vertex map is built first (null for Removed nodes).
+  const bool constrained = !options.constraints.empty() && tri.dimension() == 2;
+  std::vector<VertexHandle> vertex_of(constrained ? n : 0);
+  if (tri.number_of_vertices() < points.size()) {
+    assign_lowest_duplicate_index(tri, x, y, kind, vertex_of);
+  } else if (constrained) {
+    for (auto v = tri.finite_vertices_begin(); v != tri.finite_vertices_end(); ++v)
+      vertex_of[v->info()] = v;
+  }
+  if (constrained) insert_constraints(tri, options.constraints, vertex_of);
 
   // Pass 1: alpha test and fluid test per finite face; record kept triangles.
   const double max_radius = options.alpha * options.h;
@@ -125,15 +212,14 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
   }
 
   // Pass 1b: drop "hanging" triangles: two wall/structure nodes and one fluid particle on the
-  // boundary, lying above that particle (against gravity). They wet the wall above the
-  // waterline, add mass that nothing supports and make the contact line creep up the wall;
-  // the same triangle below the particle is a genuine part of the water and is kept.
+  // boundary (on a free edge), lying above that particle (against gravity). They wet the wall
+  // above the waterline, add mass that nothing supports and make the contact line creep up
+  // the wall; the same triangle below the particle is a genuine part of the water and is kept.
   std::vector<std::uint8_t> on_boundary(n, 0);
   for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
     if (!f->info()) continue;
     for (int e = 0; e < 3; ++e) {
-      const auto across = f->neighbor(e);
-      if (!tri.is_infinite(across) && across->info()) continue;
+      if (!is_free_edge(tri, f, e, kind)) continue;
       on_boundary[f->vertex(Delaunay::ccw(e))->info()] = 1;
       on_boundary[f->vertex(Delaunay::cw(e))->info()] = 1;
     }
@@ -162,21 +248,18 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
     mesh.in_mesh[i0] = mesh.in_mesh[i1] = mesh.in_mesh[i2] = 1;
   }
 
-  // Pass 2: an edge of a kept face is on the boundary when the face across it is infinite
-  // or not kept. A boundary edge with a fluid end is a free edge (an edge between two wall or
-  // structure nodes is a wall): both its ends get p = 0, wall nodes at the contact line too.
-  // A wall node on a free edge must not keep a pressure unknown: its only equation would be the
-  // mass balance of one or two triangles above the waterline, a stiff compressible pocket.
+  // Pass 2: both ends of a free edge (see is_free_edge) get p = 0, wall nodes at the contact
+  // line too. A wall node on a free edge must not keep a pressure unknown: its only equation
+  // would be the mass balance of one or two triangles above the waterline, a stiff
+  // compressible pocket. A constraint edge is never free: the triangle on its other side was
+  // evaluated on its own (no triangle crosses a constraint).
   for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
     if (!f->info()) continue;
     for (int e = 0; e < 3; ++e) {
-      const auto across = f->neighbor(e);
-      if (!tri.is_infinite(across) && across->info()) continue;
+      if (!is_free_edge(tri, f, e, kind)) continue;
       // Edge e is opposite vertex e: its ends are vertices ccw(e) and cw(e).
-      const std::int32_t a = f->vertex(Delaunay::ccw(e))->info();
-      const std::int32_t b = f->vertex(Delaunay::cw(e))->info();
-      if (kind[a] == NodeKind::Fluid || kind[b] == NodeKind::Fluid)
-        mesh.free_surface[a] = mesh.free_surface[b] = 1;
+      mesh.free_surface[f->vertex(Delaunay::ccw(e))->info()] = 1;
+      mesh.free_surface[f->vertex(Delaunay::cw(e))->info()] = 1;
     }
   }
   return mesh;

@@ -1,7 +1,8 @@
 #pragma once
-// PFEM remeshing (theory §6, step 1): Delaunay triangulation of all nodes at their current
-// positions (CGAL, exact predicates), the alpha-shape test per face, removal of triangles
-// without a fluid particle, and free-surface detection. CGAL stays inside remesher.cpp.
+// PFEM remeshing (theory §6, step 1): (constrained) Delaunay triangulation of all nodes at
+// their current positions (CGAL, exact predicates), with wall and beam segments as
+// constraints, the alpha-shape test per face, removal of triangles without a fluid particle,
+// and free-surface detection. CGAL stays inside remesher.cpp.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -19,19 +20,36 @@ struct RemeshOptions {
   // Gravity (any length; zero disables): triangles of two wall/structure nodes hanging above a
   // boundary particle are dropped (see remesher.cpp).
   double gravity_x = 0.0, gravity_y = 0.0;
+  // Constraint segments, each a pair of node indices: consecutive nodes of the wall
+  // polylines, and beam elements. Each segment is forced into the triangulation (a
+  // constrained Delaunay triangulation), so no triangle crosses it: fluid on its two sides is
+  // meshed independently and cannot leak through it. A constraint edge is never a free edge
+  // (it is a wall), whatever lies on its other side. Empty (the default): plain Delaunay.
+  // - An index outside [0, size) or a segment with equal ends throws std::invalid_argument.
+  // - A segment with a Removed end is skipped. An end that is a merged duplicate (see
+  //   remesh()) stands for the point's representative node, which has the same coordinates;
+  //   a segment whose two ends are coincident nodes is skipped.
+  // - A node lying exactly on a segment splits it (both parts are constraints).
+  // - Segments must not cross each other except at shared nodes (walls meeting at a corner
+  //   node, a beam clamped at a wall node). A segment that crosses an already inserted one in
+  //   the interior of both is left out (only parts ending at nodes lying on it before the
+  //   crossing stay); no node is ever invented, and no error is raised.
+  std::vector<std::array<std::int32_t, 2>> constraints{};
 };
 
 // The fluid mesh of one time step.
 struct FluidMesh {
   std::vector<std::array<std::int32_t, 3>> triangles;  // node indices, counter-clockwise
   std::vector<std::uint8_t> in_mesh;       // per node: a corner of at least one kept triangle
-  // per node: on a free edge of the kept region (a boundary edge with a fluid end), p = 0;
-  // wall and structure nodes where the free surface meets them are included.
+  // per node: on a free edge of the kept region (a boundary edge with a fluid end that is not
+  // a constraint), p = 0; wall and structure nodes where the free surface meets them are
+  // included.
   std::vector<std::uint8_t> free_surface;
 };
 
-// Triangulates the nodes (x[i], y[i]) of kinds kind[i]. Throws std::invalid_argument on
-// mismatched spans, a non-positive (or non-finite) h or alpha, or a non-finite coordinate.
+// Triangulates the nodes (x[i], y[i]) of kinds kind[i], honouring options.constraints.
+// Throws std::invalid_argument on mismatched spans, a non-positive (or non-finite) h or
+// alpha, a non-finite coordinate, or an invalid constraint (see RemeshOptions).
 // Coincident nodes (equal coordinates) are merged: the lowest index among them
 // represents the point, and the later duplicates get in_mesh = 0 and appear in no triangle.
 // Thread-safe (no shared state).

@@ -3,8 +3,10 @@
 #include <Eigen/LU>
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdio>
 #include <string>
 
 namespace pfem {
@@ -35,6 +37,7 @@ void UnifiedStep::number_unknowns(const mesh::FluidMesh& mesh, const NodeState& 
 void UnifiedStep::element_matrices(const mesh::FluidMesh& mesh, const StepSettings& s) {
   const int ne = static_cast<int>(mesh.triangles.size());
   mats_.resize(ne);
+  twice_areas_.resize(ne);
 #pragma omp parallel for schedule(static) num_threads(s.threads)
   for (int e = 0; e < ne; ++e) {
     std::array<double, 3> x, y;
@@ -44,7 +47,9 @@ void UnifiedStep::element_matrices(const mesh::FluidMesh& mesh, const StepSettin
       x[a] = xn_[i] + (d >= 0 ? s.dt * v_[d] : 0.0);
       y[a] = yn_[i] + (d >= 0 ? s.dt * v_[d + 1] : 0.0);
     }
-    fluid::mini_matrices(fluid::triangle_geometry(x, y), s.fluid, s.thickness, s.gx, s.gy, mats_[e]);
+    const fluid::TriangleGeometry g = fluid::triangle_geometry(x, y);
+    twice_areas_[e] = g.A;
+    fluid::mini_matrices(g, s.fluid, s.thickness, s.gx, s.gy, mats_[e]);
   }
 }
 
@@ -71,7 +76,7 @@ void UnifiedStep::residuals(const mesh::FluidMesh& mesh, const StepSettings& s) 
     }
     const int b = n_node_v_ + 2 * e;
     v(6) = v_[b], v(7) = v_[b + 1];
-    vn(6) = vn(7) = 0.0;  // hierarchical bubble: no enrichment carried from t_n
+    vn(6) = vbn_[e](0), vn(7) = vbn_[e](1);
     const fluid::Vec8 rv = m.F - m.M * ((v - vn) * inv_dt) - m.K * v + m.G * p;
     const fluid::Vec3 rp = -m.Mp.cwiseProduct(p - pn) * inv_dt - m.G.transpose() * v;
     const fluid::Vec3 rp_abs = m.Mp.cwiseProduct(p - pn).cwiseAbs() * inv_dt + m.G.cwiseAbs().transpose() * v.cwiseAbs();
@@ -220,16 +225,61 @@ void UnifiedStep::correct_condensed_bubble(const mesh::FluidMesh& mesh) {
   }
 }
 
+namespace {
+// The sorted node triple of a triangle packed in 64 bits (node indices below 2^21).
+std::uint64_t triangle_key(const std::array<std::int32_t, 3>& t) {
+  std::array<std::uint64_t, 3> n{static_cast<std::uint64_t>(t[0]), static_cast<std::uint64_t>(t[1]),
+                                 static_cast<std::uint64_t>(t[2])};
+  std::sort(n.begin(), n.end());
+  return n[0] | (n[1] << 21) | (n[2] << 42);
+}
+
+// Whether segments pq and ab cross or touch (each straddles the other's line).
+bool segments_cross(double px, double py, double qx, double qy, double ax, double ay, double bx, double by) {
+  const auto orient = [](double ux, double uy, double vx, double vy, double wx, double wy) {
+    return (vx - ux) * (wy - uy) - (vy - uy) * (wx - ux);
+  };
+  const double d1 = orient(ax, ay, bx, by, px, py), d2 = orient(ax, ay, bx, by, qx, qy);
+  const double d3 = orient(px, py, qx, qy, ax, ay), d4 = orient(px, py, qx, qy, bx, by);
+  return ((d1 > 0) != (d2 > 0) || d1 == 0 || d2 == 0) && ((d3 > 0) != (d4 > 0) || d3 == 0 || d4 == 0);
+}
+}  // namespace
+
+void UnifiedStep::move_free_particles(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const {
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes.kind[i] != mesh::NodeKind::Fluid || mesh.in_mesh[i]) continue;
+    const double vx = nodes.vx[i] + s.dt * s.gx, vy = nodes.vy[i] + s.dt * s.gy;
+    const double x = xn_[i] + s.dt * vx, y = yn_[i] + s.dt * vy;
+    bool hits = false;
+    for (const auto& w : s.walls) {
+      if (segments_cross(xn_[i], yn_[i], x, y, nodes.x[w[0]], nodes.y[w[0]], nodes.x[w[1]], nodes.y[w[1]])) {
+        hits = true;
+        break;
+      }
+    }
+    nodes.vx[i] = hits ? 0.0 : vx, nodes.vy[i] = hits ? 0.0 : vy;
+    nodes.x[i] = hits ? xn_[i] : x, nodes.y[i] = hits ? yn_[i] : y;
+  }
+}
+
 StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes,
                                 const std::atomic<bool>* cancel) {
   StepReport report;
   xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy, pn_ = nodes.p;
+  if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
   number_unknowns(mesh, nodes);
   report.velocity_unknowns = n_v_;
   report.pressure_unknowns = n_p_;
 
-  // Initial iterate: the velocities and pressures of t_n, zero bubbles.
+  // Initial iterate: the velocities, pressures and bubbles of t_n.
   v_.setZero(n_v_);
+  const int ne = static_cast<int>(mesh.triangles.size());
+  vbn_.assign(ne, Eigen::Vector2d::Zero());
+  for (int e = 0; e < ne; ++e) {
+    if (auto it = bubbles_by_triangle_.find(triangle_key(mesh.triangles[e])); it != bubbles_by_triangle_.end())
+      vbn_[e] = it->second;
+    v_[n_node_v_ + 2 * e] = vbn_[e](0), v_[n_node_v_ + 2 * e + 1] = vbn_[e](1);
+  }
   p_.setZero(n_p_);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (vdof_[i] >= 0) v_[vdof_[i]] = vxn_[i], v_[vdof_[i] + 1] = vyn_[i];
@@ -262,10 +312,20 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     report.residual = std::max(r_v, r_p);
     if (!std::isfinite(report.residual))
       throw StepFailure("Newton produced a non-finite residual at iteration " + std::to_string(it));
-    if (report.residual <= s.tolerance) break;
+    if (report.residual <= s.tolerance) {
+      // A converged state with an inverted triangle is no solution of the PFEM step: a
+      // particle has crossed an edge (a wall's, typically). Fail so the step is retried shorter.
+      for (const double a : twice_areas_)
+        if (!(a > 0.0)) throw StepFailure("a triangle inverted within the step");
+      break;
+    }
     if (it == s.max_iterations)
-      throw StepFailure("Newton did not converge in " + std::to_string(it) +
-                        " iterations (relative residual " + std::to_string(report.residual) + ")");
+    {
+      char msg[96];
+      std::snprintf(msg, sizeof msg, "Newton did not converge in %d iterations (relative residual %.3e)",
+                    it, report.residual);
+      throw StepFailure(msg);
+    }
 
     // One factorisation per step serves every iteration (the tangent changes only through the
     // small geometry update); refactorise at the current iterate if convergence stalls.
@@ -292,15 +352,16 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
 
   // Commit the converged state to the nodes; particles outside the mesh fall freely.
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (nodes.is_fixed(i)) continue;
     if (const int d = vdof_[i]; d >= 0) {
       nodes.vx[i] = v_[d], nodes.vy[i] = v_[d + 1];
-    } else if (!mesh.in_mesh[i]) {
-      nodes.vx[i] += s.dt * s.gx, nodes.vy[i] += s.dt * s.gy;
+      nodes.x[i] = xn_[i] + s.dt * nodes.vx[i];
+      nodes.y[i] = yn_[i] + s.dt * nodes.vy[i];
     }
-    nodes.x[i] = xn_[i] + s.dt * nodes.vx[i];
-    nodes.y[i] = yn_[i] + s.dt * nodes.vy[i];
   }
+  move_free_particles(mesh, s, nodes);
+  bubbles_by_triangle_.clear();
+  for (int e = 0; e < ne; ++e)
+    bubbles_by_triangle_[triangle_key(mesh.triangles[e])] = v_.segment<2>(n_node_v_ + 2 * e);
   for (std::size_t i = 0; i < nodes.size(); ++i) nodes.p[i] = pdof_[i] >= 0 ? p_[pdof_[i]] : 0.0;
   return report;
 }

@@ -4,8 +4,11 @@
 // Unknowns: a velocity at every free node in the mesh (wall nodes are fixed at v = 0), a
 // bubble velocity per triangle, and a pressure at every mesh node that is not on the free
 // surface (p = 0 there). The bubble is a hierarchical enrichment (v = sum L_a v_a +
-// 27 L1 L2 L3 v_b), so its value at t_n is taken as zero: the previous step's field is carried
-// by the nodes alone. The DDM makes the same choice.
+// 27 L1 L2 L3 v_b) whose mass couples to the corners (M_a4 != 0), so its momentum must be
+// carried from step to step: a triangle that survives remeshing (same three nodes) keeps its
+// bubble velocity; a new triangle starts with none. Resetting it every step instead acts as a
+// drag that grows as dt shrinks (-10 % on start-up Poiseuille flow at dt = 0.1 ms). The DDM
+// carries the bubble's sensitivity the same way.
 //
 // Each Newton iteration solves [KTvv KTvp; KTpv KTpp][dv; dp] = [rv; rp] with KTvv = M/dt + K,
 // KTvp = -G, KTpv = G^T, KTpp = Mp/dt exactly, by one of two block eliminations:
@@ -23,7 +26,11 @@
 // The tangent omits the geometric terms H, T (a modified Newton); one factorisation per step
 // serves all iterations unless convergence stalls, and the residual is driven to a tight
 // relative tolerance because the DDM is exact only at the converged state.
+#include <array>
 #include <atomic>
+#include <cstdint>
+#include <span>
+#include <unordered_map>
 #include <stdexcept>
 #include <vector>
 
@@ -44,6 +51,8 @@ struct StepSettings {
   enum class Formulation { kCondensedBubble, kGlobalBubble };
   Formulation formulation = Formulation::kCondensedBubble;
   int threads = 1;  // for the element loops
+  // Wall pieces (node pairs): a particle falling freely may not pass through them.
+  std::span<const std::array<std::int32_t, 2>> walls;
 };
 
 struct StepReport {
@@ -85,6 +94,9 @@ class UnifiedStep {
   // Assemble and factorise the Newton matrix of the chosen formulation at the current iterate.
   void factorize_global_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
   void factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
+  // Moves the particles outside the mesh ballistically; one whose path crosses a wall stops
+  // where it was (it hits the wall and sticks, as water does at a no-slip wall).
+  void move_free_particles(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const;
   // Newton corrections from the current residuals with the last factorisation.
   void correct_global_bubble(const StepSettings& s);
   void correct_condensed_bubble(const mesh::FluidMesh& mesh);
@@ -94,11 +106,15 @@ class UnifiedStep {
   std::vector<int> pdof_;           // per node: pressure unknown or -1
   int n_node_v_ = 0, n_v_ = 0, n_p_ = 0;
   std::vector<double> xn_, yn_, vxn_, vyn_, pn_;  // state at t_n (per node)
+  std::vector<Eigen::Vector2d> vbn_;                // bubble velocities at t_n (per element)
+  // Bubble velocities of the last converged step, by the triangle's sorted node triple.
+  std::unordered_map<std::uint64_t, Eigen::Vector2d> bubbles_by_triangle_;
   // Per iteration.
   Eigen::VectorXd v_, p_;           // current iterate of the unknowns
   Eigen::VectorXd rv_, rp_, mp_;    // residuals and assembled lumped pressure mass
   Eigen::VectorXd rp_abs_;          // per pressure row: sum of the magnitudes of its terms
   std::vector<fluid::MiniMatrices> mats_;
+  std::vector<double> twice_areas_;  // per element, at the current iterate
   // Per element, from the last factorisation (kCondensedBubble): the bubble block inverse and
   // its couplings to the corner velocities and pressures.
   struct BubbleCondensation {

@@ -24,6 +24,7 @@ using pfem::mesh::FluidMesh;
 using pfem::mesh::NodeKind;
 using pfem::mesh::RemeshOptions;
 using Triangle = std::array<std::int32_t, 3>;
+using Segment = std::array<std::int32_t, 2>;
 
 struct Nodes {
   std::vector<double> x, y;
@@ -38,6 +39,11 @@ struct Nodes {
   // Without gravity unless given: then "hanging" triangles are dropped too.
   FluidMesh remesh(double h, double alpha, double gy = 0.0) const {
     return pfem::mesh::remesh(x, y, kind, RemeshOptions{h, alpha, 0.0, gy});
+  }
+  FluidMesh remesh_constrained(double h, double alpha, std::vector<Segment> constraints) const {
+    RemeshOptions options{h, alpha};
+    options.constraints = std::move(constraints);
+    return pfem::mesh::remesh(x, y, kind, options);
   }
 };
 
@@ -68,8 +74,12 @@ double total_area(const Nodes& n, const FluidMesh& m) {
 }
 
 // Free surface recomputed from the triangle list: both ends of every edge used exactly once
-// that has a fluid end (an edge between two wall/structure nodes is a wall, not free).
-std::vector<std::uint8_t> free_surface_from_triangles(const Nodes& n, const FluidMesh& m) {
+// that has a fluid end (an edge between two wall/structure nodes is a wall, not free) and is
+// not one of the constraint segments (walls too).
+std::vector<std::uint8_t> free_surface_from_triangles(const Nodes& n, const FluidMesh& m,
+                                                      const std::vector<Segment>& walls = {}) {
+  std::set<std::pair<std::int32_t, std::int32_t>> constrained;
+  for (const auto& [a, b] : walls) constrained.insert({std::min(a, b), std::max(a, b)});
   std::map<std::pair<std::int32_t, std::int32_t>, int> uses;
   for (const auto& t : m.triangles) {
     for (int e = 0; e < 3; ++e) {
@@ -79,7 +89,7 @@ std::vector<std::uint8_t> free_surface_from_triangles(const Nodes& n, const Flui
   }
   std::vector<std::uint8_t> fs(n.x.size(), 0);
   for (const auto& [edge, count] : uses) {
-    if (count != 1) continue;
+    if (count != 1 || constrained.count(edge)) continue;
     if (n.kind[edge.first] == NodeKind::Fluid || n.kind[edge.second] == NodeKind::Fluid)
       fs[edge.first] = fs[edge.second] = 1;
   }
@@ -93,8 +103,10 @@ std::vector<std::uint8_t> in_mesh_from_triangles(const Nodes& n, const FluidMesh
 }
 
 // Checks every invariant that holds for any input: sizes, CCW, alpha test, fluid corner,
-// in_mesh and free_surface consistent with the triangle list.
-void expect_consistent(const Nodes& n, const FluidMesh& m, double h, double alpha) {
+// in_mesh and free_surface consistent with the triangle list (and the constraint segments,
+// which must not contain other nodes).
+void expect_consistent(const Nodes& n, const FluidMesh& m, double h, double alpha,
+                       const std::vector<Segment>& walls = {}) {
   ASSERT_EQ(m.in_mesh.size(), n.x.size());
   ASSERT_EQ(m.free_surface.size(), n.x.size());
   for (const auto& t : m.triangles) {
@@ -105,7 +117,7 @@ void expect_consistent(const Nodes& n, const FluidMesh& m, double h, double alph
                 n.kind[t[2]] == NodeKind::Fluid);
   }
   EXPECT_EQ(m.in_mesh, in_mesh_from_triangles(n, m));
-  EXPECT_EQ(m.free_surface, free_surface_from_triangles(n, m));
+  EXPECT_EQ(m.free_surface, free_surface_from_triangles(n, m, walls));
 }
 
 Nodes fluid_grid(int nx, int ny, double h, double x0 = 0.0, double y0 = 0.0) {
@@ -446,7 +458,305 @@ TEST(Remesher, RandomCloudMatchesBruteForce) {
   EXPECT_LT(m.triangles.size(), static_cast<std::size_t>(2 * count));
 }
 
-// Prints remesh() times for jittered grids; never asserts on time.
+// ---- Constraint segments (walls and beams) ----
+
+int edge_uses(const FluidMesh& m, std::int32_t a, std::int32_t b) {
+  int uses = 0;
+  for (const auto& t : m.triangles) {
+    const bool has_a = t[0] == a || t[1] == a || t[2] == a;
+    const bool has_b = t[0] == b || t[1] == b || t[2] == b;
+    uses += has_a && has_b;
+  }
+  return uses;
+}
+
+// Triangles with sorted corners, mapped through index_map (identity when empty); only those
+// accepted by the filter.
+template <class Filter>
+std::set<Triangle> triangle_set(const FluidMesh& m, Filter keep,
+                                const std::vector<std::int32_t>& index_map = {}) {
+  std::set<Triangle> s;
+  for (auto t : m.triangles) {
+    if (!keep(t)) continue;
+    if (!index_map.empty()) {
+      for (auto& v : t) v = index_map[v];
+    }
+    std::sort(t.begin(), t.end());
+    s.insert(t);
+  }
+  return s;
+}
+std::set<Triangle> triangle_set(const FluidMesh& m) {
+  return triangle_set(m, [](const Triangle&) { return true; });
+}
+
+// A vertical wall x = 0 (nodes j = 0..rows at (0, j h), consecutive pairs as constraints)
+// between two jittered blocks of fluid (cols columns each). Each block's first column stands
+// 0.35..0.45 h from the wall, level with the middle of a wall segment: every wall segment has
+// particles of both sides strictly inside its diametral circle (distance <= 0.453 h < h/2),
+// so no wall segment is a Delaunay edge and plain Delaunay joins the blocks across the wall.
+struct WallBetweenBlocks {
+  Nodes nodes;
+  std::vector<Segment> wall;
+  std::int32_t first_right = 0;  // left particles: [rows + 1, first_right); right: the rest
+};
+
+WallBetweenBlocks wall_between_blocks(int rows, int cols, double h) {
+  WallBetweenBlocks w;
+  for (int j = 0; j <= rows; ++j) w.nodes.add(0.0, j * h, NodeKind::Wall);
+  for (int j = 0; j < rows; ++j) w.wall.push_back({j, j + 1});
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> jitter(-0.05 * h, 0.05 * h);
+  for (const int side : {-1, 1}) {
+    if (side == 1) w.first_right = static_cast<std::int32_t>(w.nodes.x.size());
+    for (int j = 0; j < rows; ++j) {
+      for (int k = 0; k < cols; ++k) {
+        const double px = side * (0.4 + k) * h + jitter(rng);
+        w.nodes.add(px, (j + 0.5) * h + jitter(rng), NodeKind::Fluid);
+      }
+    }
+  }
+  return w;
+}
+
+// Corners strictly left (x < 0) and strictly right (x > 0) of the wall line x = 0.
+bool spans_x0(const Nodes& n, const Triangle& t) {
+  const bool left = n.x[t[0]] < 0.0 || n.x[t[1]] < 0.0 || n.x[t[2]] < 0.0;
+  const bool right = n.x[t[0]] > 0.0 || n.x[t[1]] > 0.0 || n.x[t[2]] > 0.0;
+  return left && right;
+}
+
+// The nodes `keep` of n (in order) and the map from n's indices to the new ones (-1: dropped).
+std::pair<Nodes, std::vector<std::int32_t>> subset(const Nodes& n,
+                                                   const std::vector<std::int32_t>& keep) {
+  Nodes s;
+  std::vector<std::int32_t> map(n.x.size(), -1);
+  for (const auto i : keep) map[i] = s.add(n.x[i], n.y[i], n.kind[i]);
+  return {s, map};
+}
+
+TEST(Remesher, WallConstraintKeepsTheTwoSidesApart) {
+  const double h = 0.1, alpha = 2.0;  // generous: without the wall, the blocks merge
+  const int rows = 10, cols = 3;
+  const WallBetweenBlocks w = wall_between_blocks(rows, cols, h);
+  const Nodes& n = w.nodes;
+
+  // Without constraints (the old behaviour): triangles span the wall, no wall segment is an
+  // edge. This proves the setup.
+  const FluidMesh plain = n.remesh(h, alpha);
+  const auto spanning = [&](const Triangle& t) { return spans_x0(n, t); };
+  EXPECT_GE(triangle_set(plain, spanning).size(), static_cast<std::size_t>(rows));
+  for (const auto& [a, b] : w.wall) EXPECT_EQ(edge_uses(plain, a, b), 0) << a << "-" << b;
+  expect_consistent(n, plain, h, alpha);
+
+  const FluidMesh m = n.remesh_constrained(h, alpha, w.wall);
+  EXPECT_TRUE(triangle_set(m, spanning).empty());
+  // Every wall segment is an edge, of one kept triangle on each side.
+  for (const auto& [a, b] : w.wall) {
+    int left = 0, right = 0;
+    for (const auto& t : m.triangles) {
+      const std::set<std::int32_t> c(t.begin(), t.end());
+      if (!c.count(a) || !c.count(b)) continue;
+      for (const auto v : t) {
+        if (n.x[v] < 0.0) ++left;
+        if (n.x[v] > 0.0) ++right;
+      }
+    }
+    EXPECT_EQ(left, 1) << "segment " << a << "-" << b;
+    EXPECT_EQ(right, 1) << "segment " << a << "-" << b;
+  }
+  // The wall is not free surface, except its two ends where the blocks' outlines meet it.
+  for (int j = 0; j <= rows; ++j) EXPECT_EQ(m.free_surface[j], j == 0 || j == rows ? 1 : 0) << j;
+  for (std::size_t i = 0; i < n.x.size(); ++i) EXPECT_EQ(m.in_mesh[i], 1) << "node " << i;
+  expect_consistent(n, m, h, alpha, w.wall);
+
+  // Each side is meshed independently: exactly as if the other block did not exist.
+  for (const int side : {-1, 1}) {
+    std::vector<std::int32_t> keep;
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(n.x.size()); ++i) {
+      if (n.x[i] == 0.0 || (n.x[i] < 0.0) == (side < 0)) keep.push_back(i);
+    }
+    const auto [alone, map] = subset(n, keep);  // wall nodes keep their indices
+    const FluidMesh one = alone.remesh_constrained(h, alpha, w.wall);
+    const auto on_side = [&](const Triangle& t) {
+      return side * n.x[t[0]] >= 0.0 && side * n.x[t[1]] >= 0.0 && side * n.x[t[2]] >= 0.0;
+    };
+    const std::set<Triangle> part = triangle_set(m, on_side, map);
+    EXPECT_EQ(part, triangle_set(one)) << "side " << side;
+    EXPECT_GT(part.size(), static_cast<std::size_t>(2 * rows));
+  }
+  EXPECT_EQ(triangle_set(m).size(), m.triangles.size());
+}
+
+// A horizontal beam (a line of Structure nodes at y = 0, elements as constraints) with a
+// block of fluid below it, and two particles that have crossed it (just above it).
+TEST(Remesher, BeamConstraintLeavesItsFarSideEmpty) {
+  const double h = 0.1, alpha = 1.3;
+  const int elements = 12;
+  Nodes n;
+  std::vector<Segment> beam;
+  for (int j = 0; j <= elements; ++j) n.add(j * h, 0.0, NodeKind::Structure);
+  for (int j = 0; j < elements; ++j) beam.push_back({j, j + 1});
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.05 * h, 0.05 * h);
+  for (int r = 0; r < 4; ++r) {
+    for (int j = 0; j < elements; ++j)
+      n.add((j + 0.5) * h + jitter(rng), -(0.5 + r) * h + jitter(rng), NodeKind::Fluid);
+  }
+  const std::int32_t crossed1 = n.add(3.5 * h, 0.05 * h, NodeKind::Fluid);
+  const std::int32_t crossed2 = n.add(8.4 * h, 0.03 * h, NodeKind::Fluid);
+  const auto above = [&](const Triangle& t) {
+    return n.y[t[0]] > 0.0 || n.y[t[1]] > 0.0 || n.y[t[2]] > 0.0;
+  };
+
+  // Without constraints the crossed particles are meshed with the water below the beam.
+  const FluidMesh plain = n.remesh(h, alpha);
+  EXPECT_EQ(plain.in_mesh[crossed1], 1);
+  EXPECT_EQ(plain.in_mesh[crossed2], 1);
+  EXPECT_GE(triangle_set(plain, above).size(), 2u);
+
+  const FluidMesh m = n.remesh_constrained(h, alpha, beam);
+  EXPECT_TRUE(triangle_set(m, above).empty());  // nothing on (or reaching) the far side
+  EXPECT_EQ(m.in_mesh[crossed1], 0);
+  EXPECT_EQ(m.in_mesh[crossed2], 0);
+  EXPECT_EQ(m.free_surface[crossed1], 0);
+  for (const auto& [a, b] : beam) EXPECT_EQ(edge_uses(m, a, b), 1) << a << "-" << b;
+  // Inner beam nodes are wetted but bound the water: no free surface there.
+  for (int j = 1; j < elements; ++j) {
+    EXPECT_EQ(m.in_mesh[j], 1) << j;
+    EXPECT_EQ(m.free_surface[j], 0) << j;
+  }
+  expect_consistent(n, m, h, alpha, beam);
+  // The water below is meshed as if the crossed particles were not there at all.
+  Nodes without = n;
+  without.kind[crossed1] = without.kind[crossed2] = NodeKind::Removed;
+  const FluidMesh below = without.remesh_constrained(h, alpha, beam);
+  EXPECT_EQ(triangle_set(m), triangle_set(below));
+  EXPECT_EQ(m.free_surface, below.free_surface);
+
+  // A particle exactly on the beam (between nodes 5 and 6) splits the element. Its two
+  // halves bound the water on one side only but are constraints, not free edges: neither
+  // the particle nor beam nodes 5 and 6 get p = 0 (without the constraints they would).
+  Nodes on = without;
+  const std::int32_t p = on.add(5.5 * h, 0.0, NodeKind::Fluid);
+  std::vector<Segment> split_beam = beam;
+  split_beam[5] = {5, p};
+  split_beam.push_back({p, 6});
+  for (const bool constrained : {true, false}) {
+    const FluidMesh s = constrained ? on.remesh_constrained(h, alpha, beam) : on.remesh(h, alpha);
+    EXPECT_EQ(s.in_mesh[p], 1);
+    EXPECT_EQ(edge_uses(s, 5, p), 1);
+    EXPECT_EQ(edge_uses(s, p, 6), 1);
+    for (const std::int32_t v : {5, 6, p}) EXPECT_EQ(s.free_surface[v], constrained ? 0 : 1) << v;
+    if (constrained) expect_consistent(on, s, h, alpha, split_beam);
+  }
+}
+
+TEST(Remesher, ConstraintsWithRemovedOrDuplicateEndsAreSkipped) {
+  const double h = 0.1, alpha = 2.0;
+  const int rows = 10;
+  const WallBetweenBlocks w = wall_between_blocks(rows, 3, h);
+  const FluidMesh reference = w.nodes.remesh_constrained(h, alpha, w.wall);
+
+  // Wall node 5 removed: its two segments are skipped, the rest of the wall holds, and water
+  // joins across the gap only (between wall nodes 4 and 6).
+  Nodes gap = w.nodes;
+  gap.kind[5] = NodeKind::Removed;
+  FluidMesh m;
+  ASSERT_NO_THROW(m = gap.remesh_constrained(h, alpha, w.wall));
+  EXPECT_EQ(m.in_mesh[5], 0);
+  EXPECT_EQ(m.free_surface[5], 0);
+  std::vector<Segment> kept_wall;
+  for (const auto& [a, b] : w.wall) {
+    if (a == 5 || b == 5) continue;
+    kept_wall.push_back({a, b});
+    EXPECT_EQ(edge_uses(m, a, b), 2) << a << "-" << b;
+  }
+  const auto spanning = [&](const Triangle& t) { return spans_x0(gap, t); };
+  const std::set<Triangle> leaks = triangle_set(m, spanning);
+  EXPECT_FALSE(leaks.empty());  // the gap is open
+  for (const auto& t : leaks) {
+    for (const auto v : t) {
+      EXPECT_GE(gap.y[v], 4.0 * h - 1e-12);
+      EXPECT_LE(gap.y[v], 6.0 * h + 1e-12);
+    }
+  }
+  expect_consistent(gap, m, h, alpha, kept_wall);
+
+  // All wall nodes removed: every constraint is skipped, the result is plain Delaunay.
+  Nodes no_wall = w.nodes;
+  for (int j = 0; j <= rows; ++j) no_wall.kind[j] = NodeKind::Removed;
+  EXPECT_EQ(triangle_set(no_wall.remesh_constrained(h, alpha, w.wall)),
+            triangle_set(no_wall.remesh(h, alpha)));
+
+  // A merged duplicate of wall node 3 (a later node at the same point) stands for node 3;
+  // a segment between the two coincident nodes, and a repeated segment, change nothing.
+  Nodes dup = w.nodes;
+  const std::int32_t copy = dup.add(0.0, 3.0 * h, NodeKind::Wall);
+  std::vector<Segment> via_copy = w.wall;
+  via_copy[2] = {2, copy};
+  via_copy[3] = {copy, 4};
+  via_copy.push_back({3, copy});
+  via_copy.push_back({1, 0});
+  const FluidMesh d = dup.remesh_constrained(h, alpha, via_copy);
+  EXPECT_EQ(d.in_mesh[copy], 0);
+  EXPECT_EQ(triangle_set(d), triangle_set(reference));
+  EXPECT_EQ(std::vector<std::uint8_t>(d.free_surface.begin(), d.free_surface.end() - 1),
+            reference.free_surface);
+
+  // Invalid constraint indices throw.
+  const auto n = static_cast<std::int32_t>(w.nodes.x.size());
+  for (const Segment bad : {Segment{-1, 0}, Segment{0, n}, Segment{3, 3}}) {
+    EXPECT_THROW(w.nodes.remesh_constrained(h, alpha, {{0, 1}, bad}), std::invalid_argument)
+        << bad[0] << "-" << bad[1];
+  }
+}
+
+TEST(Remesher, ConstraintsThroughNodesAndCrossingConstraints) {
+  const double h = 0.1, alpha = 2.0;
+  const int rows = 10;
+  const WallBetweenBlocks w = wall_between_blocks(rows, 3, h);
+  const FluidMesh reference = w.nodes.remesh_constrained(h, alpha, w.wall);
+
+  // One segment from the bottom to the top wall node runs through the others: it is split
+  // at them, the same as the consecutive pairs.
+  const FluidMesh whole = w.nodes.remesh_constrained(h, alpha, {{0, rows}});
+  EXPECT_EQ(triangle_set(whole), triangle_set(reference));
+  EXPECT_EQ(whole.free_surface, reference.free_surface);
+
+  // A particle lying exactly on a wall segment (between wall nodes 7 and 8) splits it too.
+  Nodes on = w.nodes;
+  const std::int32_t p = on.add(0.0, 7.5 * h, NodeKind::Fluid);
+  const FluidMesh split = on.remesh_constrained(h, alpha, w.wall);
+  EXPECT_TRUE(triangle_set(split, [&](const Triangle& t) { return spans_x0(on, t); }).empty());
+  EXPECT_EQ(edge_uses(split, 7, p), 2);
+  EXPECT_EQ(edge_uses(split, p, 8), 2);
+  EXPECT_EQ(edge_uses(split, 7, 8), 0);
+  EXPECT_EQ(split.in_mesh[p], 1);
+  EXPECT_EQ(split.free_surface[p], 0);
+  std::vector<Segment> split_wall = w.wall;
+  split_wall[7] = {7, p};
+  split_wall.push_back({p, 8});
+  expect_consistent(on, split, h, alpha, split_wall);
+
+  // A segment crossing the (already inserted) wall in the interior of both is left out:
+  // no node is invented, the result is as without it.
+  const std::int32_t left = rows + 1 + 3 * 2;  // row 2, next to the wall
+  const std::int32_t right = w.first_right + 3 * 2;
+  ASSERT_LT(w.nodes.x[left], 0.0);
+  ASSERT_GT(w.nodes.x[right], 0.0);
+  ASSERT_NEAR(w.nodes.y[left], 2.5 * h, 0.05 * h);
+  ASSERT_NEAR(w.nodes.y[right], 2.5 * h, 0.05 * h);
+  std::vector<Segment> crossing = w.wall;
+  crossing.push_back({left, right});
+  FluidMesh c;
+  ASSERT_NO_THROW(c = w.nodes.remesh_constrained(h, alpha, crossing));
+  EXPECT_EQ(triangle_set(c), triangle_set(reference));
+  EXPECT_EQ(c.free_surface, reference.free_surface);
+}
+
+// Prints remesh() times for jittered grids in an open box of walls (left, bottom, right),
+// without and with the walls' consecutive node pairs as constraints; never asserts on time.
 TEST(Remesher, TimingOfJitteredGrids) {
   for (const int side : {45, 90, 173}) {  // ~2000, ~8100, ~30000 points
     const double h = 0.01;
@@ -459,19 +769,35 @@ TEST(Remesher, TimingOfJitteredGrids) {
         n.add(i * h + jitter(rng), j * h + jitter(rng), wall ? NodeKind::Wall : NodeKind::Fluid);
       }
     }
-    std::vector<double> ms;
-    std::size_t triangles = 0;
-    for (int rep = 0; rep < 7; ++rep) {
-      const auto t0 = std::chrono::steady_clock::now();
-      const FluidMesh m = n.remesh(h, 1.3);
-      const auto t1 = std::chrono::steady_clock::now();
-      ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-      triangles = m.triangles.size();
+    const auto node = [side](int i, int j) { return static_cast<std::int32_t>(j * side + i); };
+    std::vector<std::array<std::int32_t, 2>> walls;
+    for (int j = 0; j + 1 < side; ++j) {
+      walls.push_back({node(0, j), node(0, j + 1)});
+      walls.push_back({node(side - 1, j), node(side - 1, j + 1)});
     }
-    std::sort(ms.begin(), ms.end());
-    std::printf("[ timing ] remesh of %zu points -> %zu triangles: median %.2f ms (min %.2f)\n",
-                n.x.size(), triangles, ms[ms.size() / 2], ms.front());
-    EXPECT_GT(triangles, n.x.size());  // sanity, not timing
+    for (int i = 0; i + 1 < side; ++i) walls.push_back({node(i, 0), node(i + 1, 0)});
+
+    std::size_t triangles[2] = {0, 0};
+    for (const bool constrained : {false, true}) {
+      RemeshOptions options{h, 1.3};
+      if (constrained) options.constraints = walls;
+      std::vector<double> ms;
+      for (int rep = 0; rep < 7; ++rep) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const FluidMesh m = pfem::mesh::remesh(n.x, n.y, n.kind, options);
+        const auto t1 = std::chrono::steady_clock::now();
+        ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+        triangles[constrained] = m.triangles.size();
+      }
+      std::sort(ms.begin(), ms.end());
+      std::printf("[ timing ] remesh of %zu points, %zu constraints -> %zu triangles: "
+                  "median %.2f ms (min %.2f)\n",
+                  n.x.size(), options.constraints.size(), triangles[constrained],
+                  ms[ms.size() / 2], ms.front());
+      EXPECT_GT(triangles[constrained], n.x.size());  // sanity, not timing
+    }
+    // The walls are far from every particle (>= 0.6 h): the constraints change nothing.
+    EXPECT_EQ(triangles[0], triangles[1]);
   }
 }
 

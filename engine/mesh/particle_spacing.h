@@ -1,0 +1,30 @@
+#pragma once
+// Particle spacing control between steps (the Lagrangian flow squeezes particles together in
+// one direction and pulls them apart in another). A fluid particle that has come closer than
+// a fraction of h to another node makes slivers that invert within a step, so it is taken out
+// (kind -> Removed; its index stays valid, it is no longer triangulated); an edge that has
+// grown much longer than h gets a new particle at its middle, or the alpha test would open
+// holes in the water.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/mesh/remesher.h"
+
+namespace pfem::mesh {
+
+// For each edge of mesh shorter than min_distance: the particle goes when the other end is a
+// wall or structure node; of two particles, the one with the higher index goes. A particle
+// closer than min_distance to the wall/structure edge of its triangle goes too. Returns the
+// number removed. Deterministic for a given mesh and positions.
+int remove_close_particles(const FluidMesh& mesh, std::span<const double> x,
+                           std::span<const double> y, std::span<NodeKind> kind, double min_distance);
+
+// Mesh edges longer than max_length with a fluid end, to be split at their middle; each node
+// is the end of at most one of them, so new particles are never crowded together.
+std::vector<std::array<std::int32_t, 2>> edges_to_split(const FluidMesh& mesh, std::span<const double> x,
+                                                        std::span<const double> y,
+                                                        std::span<const NodeKind> kind, double max_length);
+
+}  // namespace pfem::mesh

@@ -1,0 +1,61 @@
+// Still water (examples/hydrostatic.json): 0.2 m of water at rest in a closed box must stay at
+// rest, keep its area, and carry the hydrostatic pressure rho*g*h at the bottom.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "engine/analysis/run.h"
+#include "engine/io/model_io.h"
+
+namespace pfem {
+namespace {
+
+int column(const Histories& h, const std::string& name) {
+  const auto it = std::find(h.columns.begin(), h.columns.end(), name);
+  return it == h.columns.end() ? -1 : static_cast<int>(it - h.columns.begin());
+}
+
+TEST(Hydrostatic, StillWaterStaysStillWithRhoGHAtTheBottom) {
+  const auto model = read_model_file(std::string(PFEM_SOURCE_DIR) + "/examples/hydrostatic.json");
+  RunOptions options;
+  options.t_end = 0.5;
+  const RunResult r = run(model, options);
+  ASSERT_EQ(r.summary.status, RunStatus::kCompleted) << r.summary.message;
+
+  const auto& h = r.responses;
+  const int bottom_p = column(h, "bottom_p"), area = column(h, "fluid_area"), speed = column(h, "max_speed");
+  ASSERT_GE(bottom_p, 0);
+  ASSERT_GE(area, 0);
+  ASSERT_GE(speed, 0);
+  ASSERT_GE(h.time.size(), 2u);
+  ASSERT_NEAR(h.time.back(), 0.5, 1e-9);
+
+  // rho g h with h = 0.2 m (the water region is 0.2 m deep), rho and |g| from the model.
+  const double g = model.has_gravity() ? std::hypot(model.gravity().x(), model.gravity().y()) : 9.81;
+  const double depth = model.fluid_regions(0).rectangle().max().y() - model.fluid_regions(0).rectangle().min().y();
+  ASSERT_NEAR(depth, 0.2, 1e-12);
+  const double rho_g_h = model.fluid().rho() * g * depth;
+
+  const double area0 = h.rows.front()[area];
+  ASSERT_GT(area0, 0.0);
+  double worst_p = 0.0, worst_area = 0.0;
+  for (std::size_t i = 0; i < h.time.size(); ++i) {
+    if (h.time[i] >= 0.05) worst_p = std::max(worst_p, std::abs(h.rows[i][bottom_p] / rho_g_h - 1.0));
+    worst_area = std::max(worst_area, std::abs(h.rows[i][area] / area0 - 1.0));
+  }
+  const auto& last = h.rows.back();
+  std::printf("rho g h = %.2f Pa, bottom_p(0.5 s) = %.2f Pa, largest deviation after 0.05 s %.4f %%\n",
+              rho_g_h, last[bottom_p], 100 * worst_p);
+  std::printf("max_speed(0.5 s) = %.3e m/s, largest fluid_area change %.4f %%\n", last[speed], 100 * worst_area);
+
+  EXPECT_NEAR(last[bottom_p], rho_g_h, 0.02 * rho_g_h);
+  EXPECT_LT(worst_p, 0.02) << "bottom pressure left the 2 % band after it settled";
+  EXPECT_LT(last[speed], 1e-3);
+  EXPECT_LT(worst_area, 0.01);
+}
+
+}  // namespace
+}  // namespace pfem

@@ -1,0 +1,272 @@
+// Model files: bad input is reported with the exact field path and a clear message, valid
+// examples validate cleanly, and the `pfem` command turns bad input into exit code 2 with one
+// `path: message` line per error on stderr.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "engine/analysis/run.h"
+#include "engine/io/model_io.h"
+
+namespace pfem {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string source(const std::string& relative) { return std::string(PFEM_SOURCE_DIR) + "/" + relative; }
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The hydrostatic example as a message, for mutation.
+pfem::v1::Model valid_model() { return read_model_file(source("examples/hydrostatic.json")); }
+
+// The example's JSON text with the first occurrence of `from` replaced by `to`.
+std::string edited_json(const std::string& from, const std::string& to) {
+  std::string json = read_text(source("examples/hydrostatic.json"));
+  const auto at = json.find(from);
+  EXPECT_NE(at, std::string::npos) << "'" << from << "' not in examples/hydrostatic.json";
+  if (at != std::string::npos) json.replace(at, from.size(), to);
+  return json;
+}
+
+std::string describe(const std::vector<FieldError>& errors) {
+  std::string out;
+  for (const auto& e : errors) out += "\n  " + e.to_string();
+  return out.empty() ? " (none)" : out;
+}
+
+// Exactly one error, at `path`, whose message contains `fragment`.
+void expect_single_error(const std::vector<FieldError>& errors, const std::string& path,
+                         const std::string& fragment) {
+  ASSERT_EQ(errors.size(), 1u) << "errors:" << describe(errors);
+  EXPECT_EQ(errors[0].path, path);
+  EXPECT_NE(errors[0].message.find(fragment), std::string::npos)
+      << "message '" << errors[0].message << "' lacks '" << fragment << "'";
+}
+
+TEST(ModelValidation, ValidExamplesHaveNoErrors) {
+  for (const char* name : {"examples/hydrostatic.json", "examples/dam-break.json"}) {
+    const auto model = read_model_file(source(name));
+    EXPECT_TRUE(validate_model(model).empty()) << name << ":" << describe(validate_model(model));
+  }
+}
+
+TEST(ModelValidation, NegativeDensity) {
+  auto m = valid_model();
+  m.mutable_fluid()->set_rho(-1000.0);
+  expect_single_error(validate_model(m), "fluid.rho", "must be > 0");
+}
+
+TEST(ModelValidation, ZeroParticleSpacing) {
+  auto m = valid_model();
+  m.mutable_mesh()->set_h(0.0);
+  expect_single_error(validate_model(m), "mesh.h", "must be > 0");
+}
+
+TEST(ModelValidation, FluidRegionOutsideEveryWall) {
+  auto m = valid_model();
+  auto* r = m.mutable_fluid_regions(0)->mutable_rectangle();
+  r->mutable_min()->set_x(1.0), r->mutable_min()->set_y(1.0);
+  r->mutable_max()->set_x(1.2), r->mutable_max()->set_y(1.2);
+  expect_single_error(validate_model(m), "fluid_regions[0]", "outside every wall");
+}
+
+// JSON has no NaN literal; the proto3 JSON mapping accepts the strings "NaN", "Infinity" and
+// "-Infinity" for doubles. They must parse, and validation must reject them.
+TEST(ModelValidation, NaNAndInfinityFromJsonStringsAreRejected) {
+  const auto nan_rho = parse_model_json(edited_json("\"rho\": 1000.0", "\"rho\": \"NaN\""));
+  EXPECT_TRUE(std::isnan(nan_rho.fluid().rho()));
+  expect_single_error(validate_model(nan_rho), "fluid.rho", "must be a finite number");
+
+  const auto inf_h = parse_model_json(edited_json("\"h\": 0.01", "\"h\": \"Infinity\""));
+  EXPECT_TRUE(std::isinf(inf_h.mesh().h()));
+  const auto errors = validate_model(inf_h);
+  ASSERT_FALSE(errors.empty());
+  EXPECT_EQ(errors[0].path, "mesh.h");
+  EXPECT_NE(errors[0].message.find("must be a finite number"), std::string::npos) << describe(errors);
+}
+
+TEST(ModelValidation, EmptyModel) {
+  const auto m = parse_model_json("{}");
+  const auto errors = validate_model(m);
+  expect_single_error(errors, "model", "is empty");
+  EXPECT_EQ(errors[0].message.rfind("is empty", 0), 0u) << errors[0].message;
+}
+
+TEST(ModelValidation, UnknownRecorderNode) {
+  auto m = valid_model();
+  auto* r = m.add_recorders();
+  r->set_name("beam_tip_ux");
+  r->set_quantity("ux");
+  r->set_node("beam_tip");
+  const std::string path = "recorders[" + std::to_string(m.recorders_size() - 1) + "].node";
+  expect_single_error(validate_model(m), path, "unknown node 'beam_tip'");
+}
+
+TEST(ModelValidation, UnknownQuantity) {
+  auto m = valid_model();
+  auto* r = m.add_recorders();
+  r->set_name("vorticity");
+  r->set_quantity("vorticity");
+  const std::string path = "recorders[" + std::to_string(m.recorders_size() - 1) + "].quantity";
+  expect_single_error(validate_model(m), path, "unknown quantity 'vorticity'");
+}
+
+TEST(ModelValidation, UnknownParameterTarget) {
+  auto m = valid_model();
+  auto* p = m.add_parameters();
+  p->set_name("E");
+  p->add_targets("structure.materials[0].E");
+  const std::string path = "parameters[" + std::to_string(m.parameters_size() - 1) + "].targets[0]";
+  expect_single_error(validate_model(m), path, "unknown target 'structure.materials[0].E'");
+}
+
+TEST(ModelValidation, TimeStepLongerThanTheAnalysis) {
+  auto m = valid_model();
+  m.mutable_analysis()->set_dt(1.0);
+  m.mutable_analysis()->set_t_end(0.5);
+  expect_single_error(validate_model(m), "analysis.dt", "must not exceed analysis.t_end");
+}
+
+TEST(ModelValidation, EveryErrorIsReportedInFieldOrder) {
+  auto m = valid_model();
+  m.mutable_fluid()->set_rho(-1.0);
+  m.mutable_mesh()->set_h(0.0);
+  const auto errors = validate_model(m);
+  ASSERT_EQ(errors.size(), 2u) << describe(errors);
+  EXPECT_EQ(errors[0].path, "fluid.rho");
+  EXPECT_EQ(errors[1].path, "mesh.h");
+}
+
+TEST(ModelParsing, UnknownJsonFieldIsAnErrorNamingTheField) {
+  const std::string json = edited_json("\"mu\": 0.001", "\"mu\": 0.001, \"viscosity\": 0.001");
+  try {
+    parse_model_json(json);
+    FAIL() << "an unknown field was accepted";
+  } catch (const ModelError& e) {
+    ASSERT_EQ(e.errors().size(), 1u);
+    EXPECT_EQ(e.errors()[0].path, "model");
+    EXPECT_NE(e.errors()[0].message.find("viscosity"), std::string::npos) << e.errors()[0].message;
+  }
+}
+
+TEST(ModelParsing, RunRejectsAnInvalidModelWithTheFieldPath) {
+  auto m = valid_model();
+  m.mutable_fluid()->set_rho(-1000.0);
+  try {
+    run(m, RunOptions{});
+    FAIL() << "run() accepted a negative density";
+  } catch (const ModelError& e) {
+    ASSERT_FALSE(e.errors().empty());
+    EXPECT_EQ(e.errors()[0].path, "fluid.rho");
+  }
+}
+
+// --- the `pfem` command -------------------------------------------------------------------
+
+struct Command {
+  int exit_code = -1;
+  std::vector<std::string> stderr_lines;
+};
+
+class PfemCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("pfem_model_io_test_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write(const std::string& name, const std::string& text) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p;
+  }
+
+  Command pfem(const std::string& arguments) {
+    const fs::path err = dir_ / "stderr.txt";
+    const std::string cmd = "'" + std::string(PFEM_BINARY_DIR) + "/bin/pfem' " + arguments + " >'" +
+                            (dir_ / "stdout.txt").string() + "' 2>'" + err.string() + "'";
+    const int status = std::system(cmd.c_str());
+    Command c;
+    c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::istringstream lines(read_text(err));
+    for (std::string line; std::getline(lines, line);) c.stderr_lines.push_back(line);
+    return c;
+  }
+
+  std::string bad_model_text() {
+    // Two errors: a negative density and a zero particle spacing.
+    std::string json = edited_json("\"rho\": 1000.0", "\"rho\": -1000.0");
+    json.replace(json.find("\"h\": 0.01"), 9, "\"h\": 0");
+    return json;
+  }
+
+  fs::path dir_;
+};
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const auto& l : lines) s += "\n  | " + l;
+  return s;
+}
+
+TEST_F(PfemCommand, ValidateAndRunExitWithTwoAndOneLinePerError) {
+  ASSERT_TRUE(fs::exists(std::string(PFEM_BINARY_DIR) + "/bin/pfem")) << "build the pfem target first";
+  const fs::path bad = write("bad.json", bad_model_text());
+  const std::vector<std::string> expected{"fluid.rho: must be > 0", "mesh.h: must be > 0"};
+
+  const Command v = pfem("validate '" + bad.string() + "'");
+  EXPECT_EQ(v.exit_code, 2);
+  EXPECT_EQ(v.stderr_lines, expected) << "stderr:" << joined(v.stderr_lines);
+
+  const Command r = pfem("run '" + bad.string() + "' --out '" + (dir_ / "out").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.stderr_lines, expected) << "stderr:" << joined(r.stderr_lines);
+}
+
+TEST_F(PfemCommand, UnknownFieldIsOneLineAndExitTwo) {
+  const fs::path bad = write("unknown.json", edited_json("\"mu\": 0.001", "\"mu\": 0.001, \"viscosity\": 0.001"));
+  const Command v = pfem("validate '" + bad.string() + "'");
+  EXPECT_EQ(v.exit_code, 2);
+  ASSERT_EQ(v.stderr_lines.size(), 1u) << "stderr:" << joined(v.stderr_lines);
+  EXPECT_EQ(v.stderr_lines[0].rfind("model: ", 0), 0u) << v.stderr_lines[0];
+  EXPECT_NE(v.stderr_lines[0].find("viscosity"), std::string::npos) << v.stderr_lines[0];
+}
+
+// A file that is not JSON at all (truncated): still exit 2 and a single `path: message` line.
+TEST_F(PfemCommand, MalformedJsonIsOneLineAndExitTwo) {
+  const fs::path bad = write("truncated.json", "{\"fluid\": ");
+  for (const std::string verb : {"validate", "run"}) {
+    const std::string extra = verb == "run" ? " --out '" + (dir_ / "out").string() + "'" : "";
+    const Command c = pfem(verb + " '" + bad.string() + "'" + extra);
+    EXPECT_EQ(c.exit_code, 2) << verb;
+    ASSERT_EQ(c.stderr_lines.size(), 1u) << "pfem " << verb << " stderr:" << joined(c.stderr_lines);
+    EXPECT_EQ(c.stderr_lines[0].rfind("model: invalid JSON", 0), 0u) << c.stderr_lines[0];
+  }
+}
+
+TEST_F(PfemCommand, ValidExampleValidates) {
+  const Command v = pfem("validate '" + source("examples/hydrostatic.json") + "'");
+  EXPECT_EQ(v.exit_code, 0) << "stderr:" << joined(v.stderr_lines);
+  EXPECT_TRUE(v.stderr_lines.empty()) << joined(v.stderr_lines);
+}
+
+}  // namespace
+}  // namespace pfem
