@@ -55,7 +55,7 @@ StepReport advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettin
 }
 
 // New particles at the middle of the edges that have grown longer than insertion_length*h,
-// with the mean velocity and pressure of the edge's ends (a wall end has v = 0).
+// with the mean velocity and pressure of the edge's ends.
 int insert_particles(const mesh::FluidMesh& mesh, const Problem& problem, NodeState& nodes) {
   if (problem.insertion_length <= 0.0) return 0;
   const auto edges = mesh::edges_to_split(mesh, nodes.x, nodes.y, nodes.kind, problem.insertion_length * problem.h);

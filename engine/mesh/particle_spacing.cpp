@@ -51,7 +51,9 @@ std::vector<std::array<std::int32_t, 2>> edges_to_split(const FluidMesh& mesh, s
     for (int e = 0; e < 3; ++e) {
       const std::int32_t a = t[e], b = t[(e + 1) % 3];
       if (used[a] || used[b] || kind[a] == NodeKind::Removed || kind[b] == NodeKind::Removed) continue;
-      if (kind[a] != NodeKind::Fluid && kind[b] != NodeKind::Fluid) continue;
+      // Particle-particle edges only: an edge from a particle to a wall node can run along
+      // the wall, and its middle would sit on the wall.
+      if (kind[a] != NodeKind::Fluid || kind[b] != NodeKind::Fluid) continue;
       const double dx = x[a] - x[b], dy = y[a] - y[b];
       if (dx * dx + dy * dy <= l2) continue;
       used[a] = used[b] = 1;

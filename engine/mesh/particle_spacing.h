@@ -21,7 +21,7 @@ namespace pfem::mesh {
 int remove_close_particles(const FluidMesh& mesh, std::span<const double> x,
                            std::span<const double> y, std::span<NodeKind> kind, double min_distance);
 
-// Mesh edges longer than max_length with a fluid end, to be split at their middle; each node
+// Mesh edges between two particles longer than max_length, to be split at their middle; each node
 // is the end of at most one of them, so new particles are never crowded together.
 std::vector<std::array<std::int32_t, 2>> edges_to_split(const FluidMesh& mesh, std::span<const double> x,
                                                         std::span<const double> y,

@@ -243,6 +243,12 @@ bool segments_cross(double px, double py, double qx, double qy, double ax, doubl
   const double d3 = orient(px, py, qx, qy, ax, ay), d4 = orient(px, py, qx, qy, bx, by);
   return ((d1 > 0) != (d2 > 0) || d1 == 0 || d2 == 0) && ((d3 > 0) != (d4 > 0) || d3 == 0 || d4 == 0);
 }
+// Whether the move (px, py) -> (qx, qy) crosses or touches a wall piece.
+bool crosses_wall(const StepSettings& s, const NodeState& nodes, double px, double py, double qx, double qy) {
+  for (const auto& w : s.walls)
+    if (segments_cross(px, py, qx, qy, nodes.x[w[0]], nodes.y[w[0]], nodes.x[w[1]], nodes.y[w[1]])) return true;
+  return false;
+}
 }  // namespace
 
 void UnifiedStep::move_free_particles(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const {
@@ -250,13 +256,7 @@ void UnifiedStep::move_free_particles(const mesh::FluidMesh& mesh, const StepSet
     if (nodes.kind[i] != mesh::NodeKind::Fluid || mesh.in_mesh[i]) continue;
     const double vx = nodes.vx[i] + s.dt * s.gx, vy = nodes.vy[i] + s.dt * s.gy;
     const double x = xn_[i] + s.dt * vx, y = yn_[i] + s.dt * vy;
-    bool hits = false;
-    for (const auto& w : s.walls) {
-      if (segments_cross(xn_[i], yn_[i], x, y, nodes.x[w[0]], nodes.y[w[0]], nodes.x[w[1]], nodes.y[w[1]])) {
-        hits = true;
-        break;
-      }
-    }
+    const bool hits = crosses_wall(s, nodes, xn_[i], yn_[i], x, y);
     nodes.vx[i] = hits ? 0.0 : vx, nodes.vy[i] = hits ? 0.0 : vy;
     nodes.x[i] = hits ? xn_[i] : x, nodes.y[i] = hits ? yn_[i] : y;
   }
@@ -313,10 +313,21 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     if (!std::isfinite(report.residual))
       throw StepFailure("Newton produced a non-finite residual at iteration " + std::to_string(it));
     if (report.residual <= s.tolerance) {
-      // A converged state with an inverted triangle is no solution of the PFEM step: a
-      // particle has crossed an edge (a wall's, typically). Fail so the step is retried shorter.
+      // A converged state with an inverted triangle, or a particle moved across a wall, is no
+      // solution of the PFEM step. Fail so that the step is retried shorter.
       for (const double a : twice_areas_)
         if (!(a > 0.0)) throw StepFailure("a triangle inverted within the step");
+      // Only particles sharing a triangle with a wall node are near enough to cross one.
+      for (const auto& t : mesh.triangles) {
+        const bool by_wall = nodes.kind[t[0]] == mesh::NodeKind::Wall || nodes.kind[t[1]] == mesh::NodeKind::Wall ||
+                             nodes.kind[t[2]] == mesh::NodeKind::Wall;
+        for (int a = 0; by_wall && a < 3; ++a) {
+          const int i = t[a], d = vdof_[i];
+          if (d >= 0 && nodes.kind[i] == mesh::NodeKind::Fluid &&
+              crosses_wall(s, nodes, xn_[i], yn_[i], xn_[i] + s.dt * v_[d], yn_[i] + s.dt * v_[d + 1]))
+            throw StepFailure("particle " + std::to_string(i) + " crossed a wall");
+        }
+      }
       break;
     }
     if (it == s.max_iterations)
