@@ -212,9 +212,11 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
   }
 
   // Pass 1b: drop "hanging" triangles: two wall/structure nodes and one fluid particle on the
-  // boundary (on a free edge), lying above that particle (against gravity). They wet the wall
-  // above the waterline, add mass that nothing supports and make the contact line creep up
-  // the wall; the same triangle below the particle is a genuine part of the water and is kept.
+  // boundary (on a free edge) whose wall edge lies wholly at or above the particle (neither
+  // wall node more than a tenth of h below it, along gravity). They wet the wall above the
+  // waterline, add mass that nothing supports and make the contact line creep up the wall.
+  // A triangle whose wall edge reaches below the particle is kept: it is the water at the
+  // contact line, or a jet climbing the wall that must stay attached to it.
   std::vector<std::uint8_t> on_boundary(n, 0);
   for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
     if (!f->info()) continue;
@@ -225,18 +227,21 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
     }
   }
   std::vector<Delaunay::Face_handle> drop;
-  const double gx = options.gravity_x, gy = options.gravity_y;
+  const double g_norm = std::hypot(options.gravity_x, options.gravity_y);
   for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
-    if (!f->info() || (gx == 0.0 && gy == 0.0)) continue;
-    int fluid = 0, particle = -1;
-    double cx = 0.0, cy = 0.0;
+    if (!f->info() || g_norm == 0.0) continue;
+    int particle = -1, fluid = 0;
+    for (int k = 0; k < 3; ++k)
+      if (kind[f->vertex(k)->info()] == NodeKind::Fluid) ++fluid, particle = f->vertex(k)->info();
+    if (fluid != 1 || !on_boundary[particle]) continue;
+    bool wall_reaches_below = false;
     for (int k = 0; k < 3; ++k) {
       const std::int32_t i = f->vertex(k)->info();
-      if (kind[i] == NodeKind::Fluid) ++fluid, particle = i;
-      cx += x[i] / 3.0, cy += y[i] / 3.0;
+      const double depth_below = ((x[i] - x[particle]) * options.gravity_x +
+                                  (y[i] - y[particle]) * options.gravity_y) / g_norm;
+      if (i != particle && depth_below > 0.1 * options.h) wall_reaches_below = true;
     }
-    if (fluid == 1 && on_boundary[particle] && (cx - x[particle]) * gx + (cy - y[particle]) * gy < 0.0)
-      drop.push_back(f);
+    if (!wall_reaches_below) drop.push_back(f);
   }
   for (auto f : drop) f->info() = 0;
   for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
