@@ -54,6 +54,9 @@ std::vector<std::array<std::int32_t, 2>> edges_to_split(const FluidMesh& mesh, s
       // Particle-particle edges only: an edge from a particle to a wall node can run along
       // the wall, and its middle would sit on the wall.
       if (kind[a] != NodeKind::Fluid || kind[b] != NodeKind::Fluid) continue;
+      // Not along the free surface: a particle there would let the alpha test close gaps in
+      // the surface and add water.
+      if (mesh.free_surface[a] && mesh.free_surface[b]) continue;
       const double dx = x[a] - x[b], dy = y[a] - y[b];
       if (dx * dx + dy * dy <= l2) continue;
       used[a] = used[b] = 1;
