@@ -3,7 +3,7 @@
 // here). The experimental surge-front points are in tests/data/martin_moyce_1952_n2.csv
 // (source and cross-check in its header line).
 //
-// The example runs as it is (h = 0.005 m, ~1700 particles, 400 steps): label slow.
+// The example runs as it is (h = 0.005 m, ~1700 particles, 400 steps, ~25 s).
 //
 // Checks: front position Z = x/a against the experiment at its times T = t sqrt(2g/a) up to
 // Z = 3, within 10 %; the fluid area within 3 % of its initial value up to t = 0.4 s.
