@@ -37,6 +37,7 @@ struct Problem {
   double dt = 0.0, t_end = 0.0;
   double newton_tolerance = 1e-10;
   int newton_max_iterations = 50;
+  bool unified_fractional_step = false;  // analysis.solver
   int record_every = 1;
   int vtk_every = 10;
   Box domain;

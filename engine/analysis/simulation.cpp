@@ -93,6 +93,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   settings.gy = problem.gy;
   settings.threads = std::max(1, options.threads);
   settings.walls = problem.wall_segments;
+  if (problem.unified_fractional_step) settings.formulation = StepSettings::Formulation::kGlobalBubble;
   UnifiedStep step;
 
   const int vtk_every = options.vtk_every.value_or(problem.vtk_every);

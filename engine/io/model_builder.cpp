@@ -138,6 +138,7 @@ Problem build_problem(const pfem::v1::Model& model) {
   if (a.has_newton_tolerance()) pb.newton_tolerance = a.newton_tolerance();
   if (a.has_newton_max_iterations()) pb.newton_max_iterations = a.newton_max_iterations();
   if (a.has_record_every()) pb.record_every = a.record_every();
+  pb.unified_fractional_step = a.has_solver() && a.solver() == "unified-fractional-step";
   if (a.has_vtk_every()) pb.vtk_every = a.vtk_every();
 
   const Bounds wb = walls_bounds(model);

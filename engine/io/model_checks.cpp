@@ -180,6 +180,8 @@ void ModelChecker::check_analysis() {
     error("analysis.newton_max_iterations", "must be >= 1");
   if (a.has_record_every() && a.record_every() < 1) error("analysis.record_every", "must be >= 1");
   if (a.has_vtk_every() && a.vtk_every() < 1) error("analysis.vtk_every", "must be >= 1");
+  if (a.has_solver() && a.solver() != "condensed-bubble" && a.solver() != "unified-fractional-step")
+    error("analysis.solver", "unknown solver '" + a.solver() + "'; expected condensed-bubble or unified-fractional-step");
 }
 
 void ModelChecker::check_recorders() {

@@ -48,6 +48,23 @@ TEST(FluidStep, GlobalAndCondensedBubbleFormulationsAgree) {
   EXPECT_LT(dp, 1e-9 * p_max);
 }
 
+TEST(FluidStep, SolverChoiceInTheModelGivesTheSameHistories) {
+  auto model = example("dam-break.json");
+  model.mutable_mesh()->set_h(0.01);
+  RunOptions options;
+  options.t_end = 0.03;
+  const RunResult a = run(model, options);
+  model.mutable_analysis()->set_solver("unified-fractional-step");
+  const RunResult b = run(model, options);
+  ASSERT_EQ(a.responses.rows.size(), b.responses.rows.size());
+  const auto& ra = a.responses.rows.back();
+  const auto& rb = b.responses.rows.back();
+  for (std::size_t j = 0; j < ra.size(); ++j) EXPECT_NEAR(ra[j], rb[j], 1e-9 * (std::abs(ra[j]) + 1e-12)) << j;
+  EXPECT_GT(ra[0], 0.146);  // front_x: the column has started to move
+  model.mutable_analysis()->set_solver("gauss-seidel");
+  EXPECT_THROW(run(model, options), ModelError);
+}
+
 TEST(FluidStep, StillWaterKeepsHydrostaticPressure) {
   auto model = example("hydrostatic.json");
   RunOptions options;
