@@ -18,6 +18,29 @@ constexpr double kRoundoff = 64 * std::numeric_limits<double>::epsilon();
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
+// The sorted node triple of a triangle packed in 64 bits (node indices below 2^21).
+std::uint64_t triangle_key(const std::array<std::int32_t, 3>& t) {
+  std::array<std::uint64_t, 3> n{static_cast<std::uint64_t>(t[0]), static_cast<std::uint64_t>(t[1]),
+                                 static_cast<std::uint64_t>(t[2])};
+  std::sort(n.begin(), n.end());
+  return n[0] | (n[1] << 21) | (n[2] << 42);
+}
+
+// Whether segments pq and ab cross or touch (each straddles the other's line).
+bool segments_cross(double px, double py, double qx, double qy, double ax, double ay, double bx, double by) {
+  const auto orient = [](double ux, double uy, double vx, double vy, double wx, double wy) {
+    return (vx - ux) * (wy - uy) - (vy - uy) * (wx - ux);
+  };
+  const double d1 = orient(ax, ay, bx, by, px, py), d2 = orient(ax, ay, bx, by, qx, qy);
+  const double d3 = orient(px, py, qx, qy, ax, ay), d4 = orient(px, py, qx, qy, bx, by);
+  return ((d1 > 0) != (d2 > 0) || d1 == 0 || d2 == 0) && ((d3 > 0) != (d4 > 0) || d3 == 0 || d4 == 0);
+}
+// Whether the move (px, py) -> (qx, qy) crosses or touches a wall piece.
+bool crosses_wall(const StepSettings& s, const NodeState& nodes, double px, double py, double qx, double qy) {
+  for (const auto& w : s.walls)
+    if (segments_cross(px, py, qx, qy, nodes.x[w[0]], nodes.y[w[0]], nodes.x[w[1]], nodes.y[w[1]])) return true;
+  return false;
+}
 }  // namespace
 
 void UnifiedStep::number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes) {
@@ -225,31 +248,23 @@ void UnifiedStep::correct_condensed_bubble(const mesh::FluidMesh& mesh) {
   }
 }
 
-namespace {
-// The sorted node triple of a triangle packed in 64 bits (node indices below 2^21).
-std::uint64_t triangle_key(const std::array<std::int32_t, 3>& t) {
-  std::array<std::uint64_t, 3> n{static_cast<std::uint64_t>(t[0]), static_cast<std::uint64_t>(t[1]),
-                                 static_cast<std::uint64_t>(t[2])};
-  std::sort(n.begin(), n.end());
-  return n[0] | (n[1] << 21) | (n[2] << 42);
-}
 
-// Whether segments pq and ab cross or touch (each straddles the other's line).
-bool segments_cross(double px, double py, double qx, double qy, double ax, double ay, double bx, double by) {
-  const auto orient = [](double ux, double uy, double vx, double vy, double wx, double wy) {
-    return (vx - ux) * (wy - uy) - (vy - uy) * (wx - ux);
-  };
-  const double d1 = orient(ax, ay, bx, by, px, py), d2 = orient(ax, ay, bx, by, qx, qy);
-  const double d3 = orient(px, py, qx, qy, ax, ay), d4 = orient(px, py, qx, qy, bx, by);
-  return ((d1 > 0) != (d2 > 0) || d1 == 0 || d2 == 0) && ((d3 > 0) != (d4 > 0) || d3 == 0 || d4 == 0);
+void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s,
+                                   const NodeState& nodes) const {
+  for (const double a : twice_areas_)
+    if (!(a > 0.0)) throw StepFailure("a triangle inverted within the step");
+  // Only particles sharing a triangle with a wall node are near enough to cross one.
+  for (const auto& t : mesh.triangles) {
+    const bool by_wall = nodes.kind[t[0]] == mesh::NodeKind::Wall || nodes.kind[t[1]] == mesh::NodeKind::Wall ||
+                         nodes.kind[t[2]] == mesh::NodeKind::Wall;
+    for (int a = 0; by_wall && a < 3; ++a) {
+      const int i = t[a], d = vdof_[i];
+      if (d >= 0 && nodes.kind[i] == mesh::NodeKind::Fluid &&
+          crosses_wall(s, nodes, xn_[i], yn_[i], xn_[i] + s.dt * v_[d], yn_[i] + s.dt * v_[d + 1]))
+        throw StepFailure("particle " + std::to_string(i) + " crossed a wall");
+    }
+  }
 }
-// Whether the move (px, py) -> (qx, qy) crosses or touches a wall piece.
-bool crosses_wall(const StepSettings& s, const NodeState& nodes, double px, double py, double qx, double qy) {
-  for (const auto& w : s.walls)
-    if (segments_cross(px, py, qx, qy, nodes.x[w[0]], nodes.y[w[0]], nodes.x[w[1]], nodes.y[w[1]])) return true;
-  return false;
-}
-}  // namespace
 
 void UnifiedStep::move_free_particles(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const {
   for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -313,25 +328,10 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     if (!std::isfinite(report.residual))
       throw StepFailure("Newton produced a non-finite residual at iteration " + std::to_string(it));
     if (report.residual <= s.tolerance) {
-      // A converged state with an inverted triangle, or a particle moved across a wall, is no
-      // solution of the PFEM step. Fail so that the step is retried shorter.
-      for (const double a : twice_areas_)
-        if (!(a > 0.0)) throw StepFailure("a triangle inverted within the step");
-      // Only particles sharing a triangle with a wall node are near enough to cross one.
-      for (const auto& t : mesh.triangles) {
-        const bool by_wall = nodes.kind[t[0]] == mesh::NodeKind::Wall || nodes.kind[t[1]] == mesh::NodeKind::Wall ||
-                             nodes.kind[t[2]] == mesh::NodeKind::Wall;
-        for (int a = 0; by_wall && a < 3; ++a) {
-          const int i = t[a], d = vdof_[i];
-          if (d >= 0 && nodes.kind[i] == mesh::NodeKind::Fluid &&
-              crosses_wall(s, nodes, xn_[i], yn_[i], xn_[i] + s.dt * v_[d], yn_[i] + s.dt * v_[d + 1]))
-            throw StepFailure("particle " + std::to_string(i) + " crossed a wall");
-        }
-      }
+      check_admissible(mesh, s, nodes);
       break;
     }
-    if (it == s.max_iterations)
-    {
+    if (it == s.max_iterations) {
       char msg[96];
       std::snprintf(msg, sizeof msg, "Newton did not converge in %d iterations (relative residual %.3e)",
                     it, report.residual);

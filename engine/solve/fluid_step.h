@@ -89,11 +89,14 @@ class UnifiedStep {
  private:
   void number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes);
   void element_matrices(const mesh::FluidMesh& mesh, const StepSettings& s);
-  // Residuals rv, rp at the current iterate; returns the force scale for the convergence test.
+  // Residuals rv, rp (and the assembled Mp) at the current iterate.
   void residuals(const mesh::FluidMesh& mesh, const StepSettings& s);
   // Assemble and factorise the Newton matrix of the chosen formulation at the current iterate.
   void factorize_global_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
   void factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
+  // A converged state with an inverted triangle, or with a particle moved across a wall, is no
+  // solution of the PFEM step: throws StepFailure so that the step is retried shorter.
+  void check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) const;
   // Moves the particles outside the mesh ballistically; one whose path crosses a wall stops
   // where it was (it hits the wall and sticks, as water does at a no-slip wall).
   void move_free_particles(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const;
