@@ -5,6 +5,7 @@
 
 #include "engine/io/geometry_bounds.h"
 #include "engine/io/model_io.h"
+#include "engine/io/structure_builder.h"
 
 namespace pfem {
 
@@ -119,11 +120,14 @@ void set_parameter(Problem& problem, const ParameterSpec& parameter, double valu
     if (t == "fluid.rho") problem.fluid.rho = value;
     else if (t == "fluid.mu") problem.fluid.mu = value;
     else if (t == "fluid.kappa") problem.fluid.kappa = value;
+    else if (t == "thickness") problem.thickness = value;
   }
 }
 
 Problem build_problem(const pfem::v1::Model& model) {
   if (auto errors = validate_model(model); !errors.empty()) throw ModelError(std::move(errors));
+  if (model.has_structure())
+    throw ModelError("structure", "is valid but not coupled to the fluid yet: models with a structure cannot run");
   Problem pb;
   pb.fluid = {model.fluid().rho(), model.fluid().mu(), model.fluid().kappa()};
   pb.thickness = model.has_thickness() ? model.thickness() : 1.0;
@@ -174,9 +178,7 @@ Problem build_problem(const pfem::v1::Model& model) {
   }
   for (const auto& p : model.parameters()) {
     ParameterSpec spec{p.name(), {p.targets().begin(), p.targets().end()}, 0.0};
-    const std::string& t = spec.targets.front();
-    spec.value = t == "fluid.rho" ? pb.fluid.rho : t == "fluid.mu" ? pb.fluid.mu : pb.fluid.kappa;
-    if (p.has_value()) spec.value = p.value();
+    spec.value = p.has_value() ? p.value() : model_target_value(model, spec.targets.front());
     set_parameter(pb, spec, spec.value);
     pb.parameters.push_back(spec);
   }

@@ -1,7 +1,9 @@
 #include "engine/io/model_checks.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "engine/io/geometry_bounds.h"
@@ -10,7 +12,11 @@ namespace pfem {
 
 namespace {
 const std::set<std::string>& nodal_quantities() {
-  static const std::set<std::string> q{"ux", "uy", "vx", "vy", "p"};
+  static const std::set<std::string> q{"ux", "uy", "vx", "vy", "p", "rz"};
+  return q;
+}
+const std::set<std::string>& element_quantities() {
+  static const std::set<std::string> q{"basic_force", "fiber_stress", "fiber_strain"};
   return q;
 }
 const std::set<std::string>& global_quantities() {
@@ -23,12 +29,65 @@ std::string listed(const std::set<std::string>& names) {
   return out;
 }
 std::string at(const std::string& path, int i) { return path + "[" + std::to_string(i) + "]"; }
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+constexpr int kMaxBeamElements = 10000;
+constexpr int kMaxFibers = 1000;
+constexpr int kMaxIntegrationPoints = 10;  // as structure::DispBeamColumn2d
+
+// Names of structure components: letters, digits, '_' and '-' (so that "<beam>/<k>" and the
+// dotted parameter targets stay unambiguous).
+bool valid_name(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+  });
+}
+
+const char* kTargetForms =
+    "fluid.rho, fluid.mu, fluid.kappa, thickness, material.<name>.e|fy|hardening_ratio, "
+    "section.<name>.width|depth|e|area|inertia or beam.<name>.rho";
+
+bool beam_elements_valid(const pfem::v1::Beam& b) {
+  return b.elements() >= 1 && b.elements() <= kMaxBeamElements;
+}
 }  // namespace
 
 bool is_nodal_quantity(const std::string& q) { return nodal_quantities().count(q) > 0; }
+bool is_element_quantity(const std::string& q) { return element_quantities().count(q) > 0; }
 bool is_global_quantity(const std::string& q) { return global_quantities().count(q) > 0; }
-bool is_parameter_target(const std::string& t) {
-  return t == "fluid.rho" || t == "fluid.mu" || t == "fluid.kappa";
+
+std::optional<TargetRef> parse_parameter_target(const std::string& t) {
+  if (t == "fluid.rho" || t == "fluid.mu" || t == "fluid.kappa") return TargetRef{"fluid", "", t.substr(6)};
+  if (t == "thickness") return TargetRef{"thickness", "", ""};
+  const auto first = t.find('.');
+  const auto last = t.rfind('.');
+  if (first == std::string::npos || last == first) return std::nullopt;
+  TargetRef ref{t.substr(0, first), t.substr(first + 1, last - first - 1), t.substr(last + 1)};
+  if (!valid_name(ref.name)) return std::nullopt;
+  static const std::map<std::string, std::set<std::string>> properties{
+      {"material", {"e", "fy", "hardening_ratio"}},
+      {"section", {"width", "depth", "e", "area", "inertia"}},
+      {"beam", {"rho"}}};
+  const auto kind = properties.find(ref.kind);
+  if (kind == properties.end() || kind->second.count(ref.property) == 0) return std::nullopt;
+  return ref;
+}
+
+bool is_parameter_target(const std::string& t) { return parse_parameter_target(t).has_value(); }
+
+std::optional<std::pair<std::string, int>> split_generated_name(const std::string& name) {
+  const auto slash = name.rfind('/');
+  if (slash == std::string::npos || slash == 0 || slash + 1 >= name.size()) return std::nullopt;
+  const std::string digits = name.substr(slash + 1);
+  if (digits.size() > 9 || digits[0] == '0' ||
+      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return std::nullopt;
+  return std::pair{name.substr(0, slash), std::stoi(digits)};
+}
+
+std::vector<FieldError> validate_structure(const pfem::v1::Model& model) {
+  ModelChecker checker(model);
+  return checker.run_structure();
 }
 
 void ModelChecker::finite(const std::string& path, double v) {
@@ -43,8 +102,16 @@ void ModelChecker::non_negative(const std::string& path, double v) {
   else if (v < 0.0) error(path, "must be >= 0");
 }
 
+std::vector<FieldError> ModelChecker::run_structure() {
+  errors_.clear();
+  collect_structure_names();
+  check_structure();
+  return errors_;
+}
+
 std::vector<FieldError> ModelChecker::run() {
   errors_.clear();
+  collect_structure_names();
   if (model_.fluid_regions_size() == 0 && model_.walls_size() == 0) {
     error("model", "is empty: it needs at least one fluid region and one wall");
     return errors_;
@@ -62,6 +129,7 @@ std::vector<FieldError> ModelChecker::run() {
   check_analysis();
   check_recorders();
   check_parameters();
+  check_structure();
   return errors_;
 }
 
@@ -194,19 +262,54 @@ void ModelChecker::check_recorders() {
       error(path + ".name", "must not contain commas, quotes, spaces or newlines");
     else if (!names.insert(r.name()).second) error(path + ".name", "'" + r.name() + "' is used twice");
     if (is_nodal_quantity(r.quantity())) {
+      const bool rz = r.quantity() == "rz";
       if (r.has_point()) {
+        if (rz) error(path + ".point", "quantity 'rz' needs a structure node (node), not a point");
         finite(path + ".point.x", r.point().x());
         finite(path + ".point.y", r.point().y());
       } else if (r.has_node()) {
-        error(path + ".node", "unknown node '" + r.node() + "'");
+        if (!is_structure_node(r.node())) error(path + ".node", "unknown node '" + r.node() + "'");
+      } else if (r.has_element()) {
+        error(path + ".element", "quantity '" + r.quantity() + "' is sampled at a node" +
+                                     (rz ? "" : " or a point") + ", not an element");
       } else {
-        error(path, "quantity '" + r.quantity() + "' needs a target: node or point");
+        error(path, "quantity '" + r.quantity() + "' needs a target: " + (rz ? "node" : "node or point"));
       }
+    } else if (is_element_quantity(r.quantity())) {
+      check_element_recorder(r, path);
     } else if (!is_global_quantity(r.quantity())) {
       error(path + ".quantity", "unknown quantity '" + r.quantity() + "'; expected one of " +
-                                    listed(nodal_quantities()) + ", " + listed(global_quantities()));
+                                    listed(nodal_quantities()) + ", " + listed(element_quantities()) +
+                                    ", " + listed(global_quantities()));
     }
   }
+}
+
+void ModelChecker::check_element_recorder(const pfem::v1::Recorder& r, const std::string& path) {
+  const std::string& q = r.quantity();
+  if (!r.has_element()) return error(path, "quantity '" + q + "' needs a target: element (\"<beam>/<k>\")");
+  const int b = beam_of_element(r.element());
+  if (b < 0) return error(path + ".element", "unknown element '" + r.element() + "'");
+  if (q == "basic_force") {
+    if (r.component() < 0 || r.component() > 2)
+      error(path + ".component", "must be in 0..2 (0 = N, 1 = M_i, 2 = M_j) (got " +
+                                     std::to_string(r.component()) + ")");
+    return;
+  }
+  const auto& beam = model_.structure().beams(b);
+  const auto section = names_.sections.find(beam.section());
+  const bool fibers = beam.element_type() == "displacement-based" && section != names_.sections.end() &&
+                      model_.structure().sections(section->second).has_fiber_rectangle();
+  if (!fibers)
+    return error(path + ".element", "element '" + r.element() + "' has no fibers: " + q +
+                                        " needs a displacement-based beam with a fiber_rectangle section");
+  const int points = beam.has_integration_points() ? beam.integration_points() : 2;
+  if (r.section_point() < 0 || r.section_point() >= points)
+    error(path + ".section_point", "must be in 0.." + std::to_string(points - 1) + " (got " +
+                                       std::to_string(r.section_point()) + ")");
+  const int n = model_.structure().sections(section->second).fiber_rectangle().fibers();
+  if (r.fiber() < 0 || r.fiber() >= n)
+    error(path + ".fiber", "must be in 0.." + std::to_string(n - 1) + " (got " + std::to_string(r.fiber()) + ")");
 }
 
 void ModelChecker::check_parameters() {
@@ -217,18 +320,255 @@ void ModelChecker::check_parameters() {
     if (p.name().empty()) error(path + ".name", "is required");
     else if (!names.insert(p.name()).second) error(path + ".name", "'" + p.name() + "' is used twice");
     if (p.targets_size() == 0) error(path + ".targets", "needs at least one target");
+    std::set<std::string> seen;
+    std::vector<std::string> targets;
     for (int k = 0; k < p.targets_size(); ++k) {
-      if (!is_parameter_target(p.targets(k)))
-        error(at(path + ".targets", k), "unknown target '" + p.targets(k) +
-                                            "'; expected fluid.rho, fluid.mu or fluid.kappa");
+      if (!seen.insert(p.targets(k)).second) {
+        error(at(path + ".targets", k), "target '" + p.targets(k) + "' is listed twice");
+        continue;
+      }
+      targets.push_back(p.targets(k));
+      check_target(p.targets(k), at(path + ".targets", k));
     }
     if (p.has_value()) {
       if (!std::isfinite(p.value())) error(path + ".value", "must be a finite number");
-      for (const auto& t : p.targets()) {
-        if ((t == "fluid.rho" || t == "fluid.kappa") && !(p.value() > 0)) error(path + ".value", "must be > 0 for " + t);
-        if (t == "fluid.mu" && p.value() < 0) error(path + ".value", "must be >= 0 for " + t);
-      }
+      else for (const auto& t : targets) check_target_value(t, p.value(), path + ".value");
     }
+  }
+}
+
+void ModelChecker::check_target(const std::string& target, const std::string& path) {
+  const auto ref = parse_parameter_target(target);
+  if (!ref) return error(path, "unknown target '" + target + "'; expected " + kTargetForms);
+  const auto& st = model_.structure();
+  const std::string in = " in target '" + target + "'";
+  if (ref->kind == "material") {
+    const auto m = names_.materials.find(ref->name);
+    if (m == names_.materials.end()) return error(path, "unknown material " + quoted(ref->name) + in);
+    const auto& mat = st.materials(m->second);
+    if (mat.has_elastic() && ref->property != "e")
+      error(path, "material " + quoted(ref->name) + " is elastic: it has no " + ref->property + " (only e)");
+  } else if (ref->kind == "section") {
+    const auto s = names_.sections.find(ref->name);
+    if (s == names_.sections.end()) return error(path, "unknown section " + quoted(ref->name) + in);
+    const auto& sec = st.sections(s->second);
+    const bool rect = ref->property == "width" || ref->property == "depth";
+    if (sec.has_elastic() && rect)
+      error(path, "section " + quoted(ref->name) + " is elastic: it has no " + ref->property +
+                      " (e, area or inertia)");
+    else if (sec.has_fiber_rectangle() && !rect)
+      error(path, "section " + quoted(ref->name) + " is a fiber_rectangle: it has no " + ref->property +
+                      " (width or depth; E is its material's)");
+  } else if (ref->kind == "beam") {
+    if (names_.beams.count(ref->name) == 0) error(path, "unknown beam " + quoted(ref->name) + in);
+  }
+}
+
+void ModelChecker::check_target_value(const std::string& target, double value, const std::string& path) {
+  const auto ref = parse_parameter_target(target);
+  if (!ref) return;
+  if (ref->property == "mu") {
+    if (value < 0) error(path, "must be >= 0 for " + target);
+  } else if (ref->property == "hardening_ratio") {
+    if (value < 0 || value >= 1) error(path, "must be in [0, 1) for " + target);
+  } else if (!(value > 0)) {
+    error(path, "must be > 0 for " + target);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// structure
+
+void ModelChecker::collect_structure_names() {
+  names_ = {};
+  const auto& st = model_.structure();
+  const auto collect = [](std::map<std::string, int>& names, const auto& items) {
+    for (int i = 0; i < items.size(); ++i)
+      if (valid_name(items[i].name())) names.emplace(items[i].name(), i);  // first one wins
+  };
+  collect(names_.nodes, st.nodes());
+  collect(names_.materials, st.materials());
+  collect(names_.sections, st.sections());
+  collect(names_.beams, st.beams());
+}
+
+bool ModelChecker::is_structure_node(const std::string& name) const {
+  if (names_.nodes.count(name) > 0) return true;
+  const auto generated = split_generated_name(name);
+  if (!generated) return false;
+  const auto b = names_.beams.find(generated->first);
+  if (b == names_.beams.end()) return false;
+  const auto& beam = model_.structure().beams(b->second);
+  return beam_elements_valid(beam) && generated->second < beam.elements();
+}
+
+int ModelChecker::beam_of_element(const std::string& name) const {
+  const auto generated = split_generated_name(name);
+  if (!generated) return -1;
+  const auto b = names_.beams.find(generated->first);
+  if (b == names_.beams.end()) return -1;
+  const auto& beam = model_.structure().beams(b->second);
+  return beam_elements_valid(beam) && generated->second <= beam.elements() ? b->second : -1;
+}
+
+void ModelChecker::check_structure() {
+  if (!model_.has_structure()) return;
+  check_structure_nodes();
+  check_materials();
+  check_sections();
+  check_beams();
+  if (model_.structure().has_rayleigh()) {
+    non_negative("structure.rayleigh.a0", model_.structure().rayleigh().a0());
+    non_negative("structure.rayleigh.a1", model_.structure().rayleigh().a1());
+  }
+}
+
+namespace {
+// Required, well-formed, unique: the name rules shared by every kind of structure component.
+template <typename Items>
+void check_names(const Items& items, const std::string& path, std::vector<FieldError>& errors) {
+  std::set<std::string> seen;
+  for (int i = 0; i < items.size(); ++i) {
+    const std::string& name = items[i].name();
+    const std::string p = at(path, i) + ".name";
+    if (name.empty()) errors.push_back({p, "is required"});
+    else if (!valid_name(name))
+      errors.push_back({p, "must use only letters, digits, '_' and '-' (got '" + name + "')"});
+    else if (!seen.insert(name).second) errors.push_back({p, "'" + name + "' is used twice"});
+  }
+}
+}  // namespace
+
+void ModelChecker::check_structure_nodes() {
+  const auto& st = model_.structure();
+  check_names(st.nodes(), "structure.nodes", errors_);
+  std::set<std::string> connected;
+  for (const auto& b : st.beams()) connected.insert({b.from_node(), b.to_node()});
+  for (int i = 0; i < st.nodes_size(); ++i) {
+    const auto& n = st.nodes(i);
+    const std::string path = at("structure.nodes", i);
+    finite(path + ".x", n.x());
+    finite(path + ".y", n.y());
+    if (n.has_mass()) {
+      non_negative(path + ".mass.x", n.mass().x());
+      non_negative(path + ".mass.y", n.mass().y());
+      non_negative(path + ".mass.rz", n.mass().rz());
+    }
+    if (n.has_load()) {
+      finite(path + ".load.x", n.load().x());
+      finite(path + ".load.y", n.load().y());
+      finite(path + ".load.rz", n.load().rz());
+    }
+    const auto known = names_.nodes.find(n.name());
+    if (known != names_.nodes.end() && known->second == i && connected.count(n.name()) == 0)
+      error(path, "is not connected to any beam");
+  }
+}
+
+void ModelChecker::check_materials() {
+  const auto& st = model_.structure();
+  check_names(st.materials(), "structure.materials", errors_);
+  for (int i = 0; i < st.materials_size(); ++i) {
+    const auto& m = st.materials(i);
+    const std::string path = at("structure.materials", i);
+    if (m.has_elastic()) {
+      positive(path + ".elastic.e", m.elastic().e());
+    } else if (m.has_bilinear()) {
+      positive(path + ".bilinear.fy", m.bilinear().fy());
+      positive(path + ".bilinear.e0", m.bilinear().e0());
+      const double b = m.bilinear().hardening_ratio();
+      if (!std::isfinite(b) || b < 0.0 || b >= 1.0)
+        error(path + ".bilinear.hardening_ratio", "must be in [0, 1)");
+    } else {
+      error(path, "needs a kind: elastic or bilinear");
+    }
+  }
+}
+
+void ModelChecker::check_sections() {
+  const auto& st = model_.structure();
+  check_names(st.sections(), "structure.sections", errors_);
+  for (int i = 0; i < st.sections_size(); ++i) {
+    const auto& s = st.sections(i);
+    const std::string path = at("structure.sections", i);
+    if (s.has_elastic()) {
+      positive(path + ".elastic.e", s.elastic().e());
+      positive(path + ".elastic.area", s.elastic().area());
+      positive(path + ".elastic.inertia", s.elastic().inertia());
+    } else if (s.has_fiber_rectangle()) {
+      const auto& f = s.fiber_rectangle();
+      positive(path + ".fiber_rectangle.width", f.width());
+      positive(path + ".fiber_rectangle.depth", f.depth());
+      if (f.fibers() < 1) error(path + ".fiber_rectangle.fibers", "must be >= 1");
+      else if (f.fibers() > kMaxFibers)
+        error(path + ".fiber_rectangle.fibers", "must be <= " + std::to_string(kMaxFibers));
+      if (f.material().empty()) error(path + ".fiber_rectangle.material", "is required");
+      else if (names_.materials.count(f.material()) == 0)
+        error(path + ".fiber_rectangle.material", "unknown material '" + f.material() + "'");
+    } else {
+      error(path, "needs a kind: elastic or fiber_rectangle");
+    }
+  }
+}
+
+void ModelChecker::check_beams() {
+  const auto& st = model_.structure();
+  check_names(st.beams(), "structure.beams", errors_);
+  for (int i = 0; i < st.beams_size(); ++i) {
+    const auto& b = st.beams(i);
+    const std::string path = at("structure.beams", i);
+    const auto end_node = [&](const std::string& name, const char* field) -> const pfem::v1::StructureNode* {
+      if (name.empty()) {
+        error(path + "." + field, "is required (the name of a structure node)");
+        return nullptr;
+      }
+      const auto n = names_.nodes.find(name);
+      if (n != names_.nodes.end()) return &st.nodes(n->second);
+      error(path + "." + field, "unknown node '" + name + "'" +
+                                    (is_structure_node(name) ? " (a beam must end at a named structure node, "
+                                                               "not at a generated one)"
+                                                             : ""));
+      return nullptr;
+    };
+    const auto* from = end_node(b.from_node(), "from_node");
+    const auto* to = end_node(b.to_node(), "to_node");
+    if (b.elements() < 1) error(path + ".elements", "must be >= 1");
+    else if (b.elements() > kMaxBeamElements)
+      error(path + ".elements", "must be <= " + std::to_string(kMaxBeamElements));
+    if (from && to && std::isfinite(from->x()) && std::isfinite(from->y()) && std::isfinite(to->x()) &&
+        std::isfinite(to->y())) {
+      const double length = std::hypot(to->x() - from->x(), to->y() - from->y());
+      const double scale = std::max(std::hypot(from->x(), from->y()), std::hypot(to->x(), to->y()));
+      const int n = std::max(1, b.elements());
+      if (length == 0.0 || !(length / n > 1e-12 * scale)) error(path, "has zero length");
+    }
+    const bool elastic = b.element_type() == "elastic";
+    if (b.element_type().empty())
+      error(path + ".element_type", "is required: elastic or displacement-based");
+    else if (!elastic && b.element_type() != "displacement-based")
+      error(path + ".element_type",
+            "unknown element type '" + b.element_type() + "'; expected elastic or displacement-based");
+    if (b.section().empty()) {
+      error(path + ".section", "is required");
+    } else if (const auto s = names_.sections.find(b.section()); s == names_.sections.end()) {
+      error(path + ".section", "unknown section '" + b.section() + "'");
+    } else if (elastic && st.sections(s->second).has_fiber_rectangle()) {
+      const auto& material = st.sections(s->second).fiber_rectangle().material();
+      const auto m = names_.materials.find(material);
+      if (m != names_.materials.end() && !st.materials(m->second).has_elastic())
+        error(path + ".section", "an elastic beam needs an elastic section or a fiber_rectangle of an elastic "
+                                 "material; section '" + b.section() + "' uses material '" + material +
+                                     "', which is not elastic");
+    }
+    if (b.has_transformation() && b.transformation() != "corotational" && b.transformation() != "linear")
+      error(path + ".transformation",
+            "unknown transformation '" + b.transformation() + "'; expected corotational or linear");
+    if (b.has_integration_points() &&
+        (b.integration_points() < 1 || b.integration_points() > kMaxIntegrationPoints))
+      error(path + ".integration_points", "must be in 1.." + std::to_string(kMaxIntegrationPoints));
+    if (b.has_mass() && b.mass() != "lumped" && b.mass() != "consistent")
+      error(path + ".mass", "unknown mass '" + b.mass() + "'; expected lumped or consistent");
+    positive(path + ".rho", b.rho());
   }
 }
 
