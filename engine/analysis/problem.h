@@ -2,11 +2,13 @@
 // The engine's domain of one analysis, built from a pfem.v1.Model by engine/io/model_builder.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/fluid/mini_element.h"
 #include "engine/solve/node_state.h"
+#include "engine/structure/structure_model.h"
 
 namespace pfem {
 
@@ -43,6 +45,9 @@ struct Problem {
   Box domain;
   NodeState nodes;
   std::vector<std::array<std::int32_t, 2>> wall_segments;  // node pairs of every wall piece
+  std::vector<std::array<std::int32_t, 2>> beam_segments;  // node pairs of every beam element
+  std::optional<structure::StructureModel> structure;     // with its nodes in `nodes`:
+  std::vector<int> structure_nodes;                        // node index of each structure node
   std::vector<RecorderSpec> recorders;
   std::vector<ParameterSpec> parameters;
 };

@@ -37,6 +37,7 @@ std::vector<double> sample_recorders(const Problem& problem, const NodeState& no
     else if (r.quantity == "vx") value = nodes.vx[i];
     else if (r.quantity == "vy") value = nodes.vy[i];
     else if (r.quantity == "p") value = nodes.p[i];
+    else if (r.quantity == "rz") value = nodes.rz[i];
     else if (r.quantity == "fluid_area") value = fluid_area(mesh, nodes);
     else if (r.quantity == "front_x") value = fluid_extreme(nodes, mesh, true);
     else if (r.quantity == "front_y") value = fluid_extreme(nodes, mesh, false);

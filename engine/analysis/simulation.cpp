@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "engine/analysis/recorders.h"
@@ -81,8 +82,11 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
 
   NodeState nodes = problem.nodes;
   for (const auto k : nodes.kind) sum.particles += k == mesh::NodeKind::Fluid;
-  const mesh::RemeshOptions remesh_options{problem.h, problem.alpha, problem.gx, problem.gy,
-                                           problem.wall_segments};
+  // Walls and beams are constraints of the triangulation: no triangle spans them.
+  auto constraints = problem.wall_segments;
+  constraints.insert(constraints.end(), problem.beam_segments.begin(), problem.beam_segments.end());
+  const mesh::RemeshOptions remesh_options{problem.h, problem.alpha, problem.gx, problem.gy, constraints};
+  std::optional<structure::StructureModel> structure = problem.structure;  // this run's own state
   StepSettings settings;
   settings.dt = problem.dt;
   settings.tolerance = problem.newton_tolerance;
@@ -92,8 +96,9 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   settings.gx = problem.gx;
   settings.gy = problem.gy;
   settings.threads = std::max(1, options.threads);
-  settings.walls = problem.wall_segments;
+  settings.walls = constraints;  // beams too: they move little within a step
   if (problem.unified_fractional_step) settings.formulation = StepSettings::Formulation::kGlobalBubble;
+  if (structure) settings.structure = {&*structure, problem.structure_nodes};
   UnifiedStep step;
 
   const int vtk_every = options.vtk_every.value_or(problem.vtk_every);

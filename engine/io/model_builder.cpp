@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "engine/io/geometry_bounds.h"
+#include "engine/io/model_checks.h"
 #include "engine/io/model_io.h"
 #include "engine/io/structure_builder.h"
 
@@ -126,8 +128,10 @@ void set_parameter(Problem& problem, const ParameterSpec& parameter, double valu
 
 Problem build_problem(const pfem::v1::Model& model) {
   if (auto errors = validate_model(model); !errors.empty()) throw ModelError(std::move(errors));
-  if (model.has_structure())
-    throw ModelError("structure", "is valid but not coupled to the fluid yet: models with a structure cannot run");
+  for (int i = 0; i < model.recorders_size(); ++i)
+    if (is_element_quantity(model.recorders(i).quantity()))
+      throw ModelError("recorders[" + std::to_string(i) + "].quantity",
+                       "'" + model.recorders(i).quantity() + "' is not recorded yet");
   Problem pb;
   pb.fluid = {model.fluid().rho(), model.fluid().mu(), model.fluid().kappa()};
   pb.thickness = model.has_thickness() ? model.thickness() : 1.0;
@@ -154,7 +158,28 @@ Problem build_problem(const pfem::v1::Model& model) {
     pb.domain = {wb.xmin - grow, wb.ymin - grow, wb.xmax + grow, wb.ymax + grow};
   }
 
-  const auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments);
+  auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments);
+  std::map<std::string, int> structure_node_by_name;
+  if (model.has_structure()) {
+    pfem::v1::Model with_values = model;
+    apply_parameter_overrides(with_values);
+    StructureBuild sb = build_structure(with_values);
+    for (int k = 0; k < sb.model.num_nodes(); ++k) {
+      const auto& node = sb.model.node(k);
+      pb.structure_nodes.push_back(pb.nodes.add(node.x(0), node.x(1), NodeKind::Structure));
+    }
+    for (const auto& [name, k] : sb.node_index) structure_node_by_name[name] = pb.structure_nodes[k];
+    for (const auto& beam : sb.beam_nodes) {
+      for (std::size_t j = 1; j < beam.size(); ++j) {
+        const int a = beam[j - 1], b = beam[j];
+        pb.beam_segments.push_back({pb.structure_nodes[a], pb.structure_nodes[b]});
+        const auto& na = sb.model.node(a);
+        const auto& nb = sb.model.node(b);
+        segments.push_back({na.x(0), na.x(1), nb.x(0), nb.x(1)});  // particles keep clear of beams too
+      }
+    }
+    pb.structure = std::move(sb.model);
+  }
   const std::size_t first_particle = pb.nodes.size();
   std::vector<FieldError> errors;
   for (int i = 0; i < model.fluid_regions_size(); ++i) {
@@ -174,6 +199,7 @@ Problem build_problem(const pfem::v1::Model& model) {
   for (const auto& r : model.recorders()) {
     RecorderSpec spec{r.name(), r.quantity(), -1};
     if (r.has_point()) spec.node = nearest_node(pb.nodes, r.point().x(), r.point().y());
+    if (r.has_node()) spec.node = structure_node_by_name.at(r.node());  // validated above
     pb.recorders.push_back(spec);
   }
   for (const auto& p : model.parameters()) {

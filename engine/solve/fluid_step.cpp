@@ -43,16 +43,31 @@ bool crosses_wall(const StepSettings& s, const NodeState& nodes, double px, doub
 }
 }  // namespace
 
-void UnifiedStep::number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes) {
+void UnifiedStep::number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes, const StepSettings& s) {
   const std::size_t n = nodes.size();
-  vdof_.assign(n, -1);
+  vx_dof_.assign(n, -1);
+  vy_dof_.assign(n, -1);
   pdof_.assign(n, -1);
   n_node_v_ = 0;
   n_p_ = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!mesh.in_mesh[i]) continue;
-    if (!nodes.is_fixed(i)) vdof_[i] = n_node_v_, n_node_v_ += 2;
+    if (!nodes.is_fixed(i) && nodes.kind[i] != mesh::NodeKind::Structure)
+      vx_dof_[i] = n_node_v_++, vy_dof_[i] = n_node_v_++;
     if (!mesh.free_surface[i]) pdof_[i] = n_p_++;
+  }
+  // Structure nodes move with the structure whether or not water touches them; a supported
+  // dof has no unknown. Their velocity unknowns are the fluid's at the same node.
+  const auto* model = s.structure.model;
+  s_dof_.assign(model ? model->num_dofs() : 0, -1);
+  for (std::size_t k = 0; k < s.structure.node.size(); ++k) {
+    for (int c = 0; c < 3; ++c) {
+      const int dof = 3 * static_cast<int>(k) + c;
+      if (model->is_fixed(dof)) continue;
+      s_dof_[dof] = n_node_v_++;
+      if (c == 0) vx_dof_[s.structure.node[k]] = s_dof_[dof];
+      if (c == 1) vy_dof_[s.structure.node[k]] = s_dof_[dof];
+    }
   }
   n_v_ = n_node_v_ + 2 * static_cast<int>(mesh.triangles.size());
 }
@@ -65,10 +80,9 @@ void UnifiedStep::element_matrices(const mesh::FluidMesh& mesh, const StepSettin
   for (int e = 0; e < ne; ++e) {
     std::array<double, 3> x, y;
     for (int a = 0; a < 3; ++a) {
-      const int i = mesh.triangles[e][a];
-      const int d = vdof_[i];
-      x[a] = xn_[i] + (d >= 0 ? s.dt * v_[d] : 0.0);
-      y[a] = yn_[i] + (d >= 0 ? s.dt * v_[d + 1] : 0.0);
+      const int i = mesh.triangles[e][a], dx = vx_dof_[i], dy = vy_dof_[i];
+      x[a] = xn_[i] + (dx >= 0 ? s.dt * v_[dx] : 0.0);
+      y[a] = yn_[i] + (dy >= 0 ? s.dt * v_[dy] : 0.0);
     }
     const fluid::TriangleGeometry g = fluid::triangle_geometry(x, y);
     twice_areas_[e] = g.A;
@@ -89,9 +103,9 @@ void UnifiedStep::residuals(const mesh::FluidMesh& mesh, const StepSettings& s) 
     fluid::Vec8 v, vn;
     fluid::Vec3 p, pn;
     for (int a = 0; a < 3; ++a) {
-      const int i = tri[a], d = vdof_[i], q = pdof_[i];
-      v(2 * a) = d >= 0 ? v_[d] : 0.0;
-      v(2 * a + 1) = d >= 0 ? v_[d + 1] : 0.0;
+      const int i = tri[a], dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];
+      v(2 * a) = dx >= 0 ? v_[dx] : 0.0;
+      v(2 * a + 1) = dy >= 0 ? v_[dy] : 0.0;
       vn(2 * a) = vxn_[i];
       vn(2 * a + 1) = vyn_[i];
       p(a) = q >= 0 ? p_[q] : 0.0;
@@ -104,8 +118,9 @@ void UnifiedStep::residuals(const mesh::FluidMesh& mesh, const StepSettings& s) 
     const fluid::Vec3 rp = -m.Mp.cwiseProduct(p - pn) * inv_dt - m.G.transpose() * v;
     const fluid::Vec3 rp_abs = m.Mp.cwiseProduct(p - pn).cwiseAbs() * inv_dt + m.G.cwiseAbs().transpose() * v.cwiseAbs();
     for (int a = 0; a < 3; ++a) {
-      const int i = tri[a], d = vdof_[i], q = pdof_[i];
-      if (d >= 0) rv_[d] += rv(2 * a), rv_[d + 1] += rv(2 * a + 1);
+      const int i = tri[a], dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];
+      if (dx >= 0) rv_[dx] += rv(2 * a);
+      if (dy >= 0) rv_[dy] += rv(2 * a + 1);
       if (q >= 0) rp_[q] += rp(a), rp_abs_[q] += rp_abs(a), mp_[q] += m.Mp(a);
     }
     rv_[b] += rv(6), rv_[b + 1] += rv(7);
@@ -114,14 +129,10 @@ void UnifiedStep::residuals(const mesh::FluidMesh& mesh, const StepSettings& s) 
 
 namespace {
 // Local velocity unknowns of a triangle: corner dofs (-1 where fixed), then the bubble's.
-std::array<int, 8> local_dofs(const std::array<std::int32_t, 3>& tri, const std::vector<int>& vdof,
-                              int bubble) {
+std::array<int, 8> local_dofs(const std::array<std::int32_t, 3>& tri, const std::vector<int>& vx_dof,
+                              const std::vector<int>& vy_dof, int bubble) {
   std::array<int, 8> dof;
-  for (int a = 0; a < 3; ++a) {
-    const int d = vdof[tri[a]];
-    dof[2 * a] = d;
-    dof[2 * a + 1] = d >= 0 ? d + 1 : -1;
-  }
+  for (int a = 0; a < 3; ++a) dof[2 * a] = vx_dof[tri[a]], dof[2 * a + 1] = vy_dof[tri[a]];
   dof[6] = bubble, dof[7] = bubble + 1;
   return dof;
 }
@@ -136,7 +147,7 @@ void UnifiedStep::factorize_global_bubble(const mesh::FluidMesh& mesh, const Ste
   for (int e = 0; e < ne; ++e) {
     const auto& m = mats_[e];
     const auto& tri = mesh.triangles[e];
-    const auto dof = local_dofs(tri, vdof_, n_node_v_ + 2 * e);
+    const auto dof = local_dofs(tri, vx_dof_, vy_dof_, n_node_v_ + 2 * e);
     for (int r = 0; r < 8; ++r) {
       if (dof[r] < 0) continue;
       for (int c = 0; c < 8; ++c)
@@ -145,6 +156,7 @@ void UnifiedStep::factorize_global_bubble(const mesh::FluidMesh& mesh, const Ste
         if (const int q = pdof_[tri[a]]; q >= 0) gt.emplace_back(dof[r], q, m.G(r, a));
     }
   }
+  add_structure_tangent(s, kt);
   SparseMatrix kvv(n_v_, n_v_);
   kvv.setFromTriplets(kt.begin(), kt.end());
   g_.resize(n_v_, n_p_);
@@ -186,8 +198,7 @@ void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const 
     std::array<int, 6> dof;
     std::array<int, 3> pdof;
     for (int k = 0; k < 3; ++k) {
-      const int d = vdof_[tri[k]];
-      dof[2 * k] = d, dof[2 * k + 1] = d >= 0 ? d + 1 : -1;
+      dof[2 * k] = vx_dof_[tri[k]], dof[2 * k + 1] = vy_dof_[tri[k]];
       pdof[k] = pdof_[tri[k]] >= 0 ? n_node_v_ + pdof_[tri[k]] : -1;
     }
     for (int r = 0; r < 6; ++r) {
@@ -202,6 +213,7 @@ void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const 
         if (pdof[r] >= 0 && pdof[c] >= 0) t.emplace_back(pdof[r], pdof[c], -cp(r, c));
   }
   for (int q = 0; q < n_p_; ++q) t.emplace_back(n_node_v_ + q, n_node_v_ + q, -mp_[q] * inv_dt);
+  add_structure_tangent(s, t);
   matrix_.resize(n_node_v_ + n_p_, n_node_v_ + n_p_);
   matrix_.setFromTriplets(t.begin(), t.end());
   if (analyze) condensed_solver_.analyze(matrix_);
@@ -223,7 +235,8 @@ void UnifiedStep::correct_condensed_bubble(const mesh::FluidMesh& mesh) {
     const Eigen::Vector3d fp = b.g_b.transpose() * z[e];
     const auto& tri = mesh.triangles[e];
     for (int k = 0; k < 3; ++k) {
-      if (const int d = vdof_[tri[k]]; d >= 0) rhs[d] -= fc(2 * k), rhs[d + 1] -= fc(2 * k + 1);
+      if (const int dx = vx_dof_[tri[k]]; dx >= 0) rhs[dx] -= fc(2 * k);
+      if (const int dy = vy_dof_[tri[k]]; dy >= 0) rhs[dy] -= fc(2 * k + 1);
       if (const int q = pdof_[tri[k]]; q >= 0) rhs[n_node_v_ + q] += fp(k);
     }
   }
@@ -237,9 +250,9 @@ void UnifiedStep::correct_condensed_bubble(const mesh::FluidMesh& mesh) {
     Eigen::Matrix<double, 6, 1> dvc;
     Eigen::Vector3d dp;
     for (int k = 0; k < 3; ++k) {
-      const int d = vdof_[tri[k]], q = pdof_[tri[k]];
-      dvc(2 * k) = d >= 0 ? x[d] : 0.0;
-      dvc(2 * k + 1) = d >= 0 ? x[d + 1] : 0.0;
+      const int dx = vx_dof_[tri[k]], dy = vy_dof_[tri[k]], q = pdof_[tri[k]];
+      dvc(2 * k) = dx >= 0 ? x[dx] : 0.0;
+      dvc(2 * k + 1) = dy >= 0 ? x[dy] : 0.0;
       dp(k) = q >= 0 ? x[n_node_v_ + q] : 0.0;
     }
     const Eigen::Vector2d dvb = z[e] + b.inv_bb * (b.g_b * dp - b.a_bc * dvc);
@@ -248,6 +261,32 @@ void UnifiedStep::correct_condensed_bubble(const mesh::FluidMesh& mesh) {
   }
 }
 
+
+void UnifiedStep::structure_residual(const StepSettings& s) {
+  auto* model = s.structure.model;
+  s_force_scale_ = 0.0;
+  if (!model) return;
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(s_dof_.size());
+  for (std::size_t j = 0; j < s_dof_.size(); ++j)
+    if (s_dof_[j] >= 0) v[j] = v_[s_dof_[j]];
+  model->set_trial_displacement(s_un_ + s.dt * v);
+  const Eigen::VectorXd inertia = model->mass_times((v - s_vn_) / s.dt), fs = model->resisting_force();
+  const Eigen::VectorXd r = model->external_load() - inertia - model->damping_times(v) - fs;
+  s_force_scale_ = std::sqrt(model->external_load().squaredNorm() + inertia.squaredNorm() + fs.squaredNorm());
+  for (std::size_t j = 0; j < s_dof_.size(); ++j)
+    if (s_dof_[j] >= 0) rv_[s_dof_[j]] += r[j];
+}
+
+void UnifiedStep::add_structure_tangent(const StepSettings& s, std::vector<Eigen::Triplet<double>>& t) const {
+  const auto* model = s.structure.model;
+  if (!model) return;
+  const structure::AddEntry add = [&](int row, int col, double value) {
+    if (s_dof_[row] >= 0 && s_dof_[col] >= 0) t.emplace_back(s_dof_[row], s_dof_[col], value);
+  };
+  model->add_mass(add, 1.0 / s.dt);
+  model->add_damping(add, 1.0);
+  model->add_tangent(add, s.dt);  // at the trial state of the last residual
+}
 
 void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s,
                                    const NodeState& nodes) const {
@@ -258,9 +297,9 @@ void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettin
     const bool by_wall = nodes.kind[t[0]] == mesh::NodeKind::Wall || nodes.kind[t[1]] == mesh::NodeKind::Wall ||
                          nodes.kind[t[2]] == mesh::NodeKind::Wall;
     for (int a = 0; by_wall && a < 3; ++a) {
-      const int i = t[a], d = vdof_[i];
-      if (d >= 0 && nodes.kind[i] == mesh::NodeKind::Fluid &&
-          crosses_wall(s, nodes, xn_[i], yn_[i], xn_[i] + s.dt * v_[d], yn_[i] + s.dt * v_[d + 1]))
+      const int i = t[a], dx = vx_dof_[i], dy = vy_dof_[i];
+      if (dx >= 0 && dy >= 0 && nodes.kind[i] == mesh::NodeKind::Fluid &&
+          crosses_wall(s, nodes, xn_[i], yn_[i], xn_[i] + s.dt * v_[dx], yn_[i] + s.dt * v_[dy]))
         throw StepFailure("particle " + std::to_string(i) + " crossed a wall");
     }
   }
@@ -282,7 +321,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   StepReport report;
   xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy, pn_ = nodes.p;
   if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
-  number_unknowns(mesh, nodes);
+  number_unknowns(mesh, nodes, s);
   report.velocity_unknowns = n_v_;
   report.pressure_unknowns = n_p_;
 
@@ -297,8 +336,20 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   }
   p_.setZero(n_p_);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (vdof_[i] >= 0) v_[vdof_[i]] = vxn_[i], v_[vdof_[i] + 1] = vyn_[i];
+    if (vx_dof_[i] >= 0) v_[vx_dof_[i]] = vxn_[i];
+    if (vy_dof_[i] >= 0) v_[vy_dof_[i]] = vyn_[i];
     if (pdof_[i] >= 0) p_[pdof_[i]] = pn_[i];
+  }
+
+  // The structure's state at t_n, from its nodes (rotations included).
+  const auto& sn = s.structure.node;
+  s_un_.setZero(3 * sn.size());
+  s_vn_.setZero(3 * sn.size());
+  for (std::size_t k = 0; k < sn.size(); ++k) {
+    const int i = sn[k];
+    s_un_.segment<3>(3 * k) << nodes.x[i] - nodes.x0[i], nodes.y[i] - nodes.y0[i], nodes.rz[i];
+    s_vn_.segment<3>(3 * k) << nodes.vx[i], nodes.vy[i], nodes.wz[i];
+    if (const int d = s_dof_[3 * k + 2]; d >= 0) v_[d] = nodes.wz[i];
   }
 
   double previous_residual = 0.0;
@@ -308,13 +359,14 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     auto t0 = Clock::now();
     element_matrices(mesh, s);
     residuals(mesh, s);
+    structure_residual(s);
     report.assemble_seconds += seconds_since(t0);
 
     // Convergence: the velocity residual against the step's force scale; the pressure residual
     // of each node against the pressure change it would cause (dt rp / Mp) relative to the
     // pressure scale, or against the round-off of its own terms, whichever is larger (in a
     // sliver dt/Mp is large and amplifies the round-off of G^T v).
-    double f_scale = 0.0;
+    double f_scale = s_force_scale_ * s_force_scale_;  // the structure's, 0 without one
     for (const auto& m : mats_) f_scale += m.F.squaredNorm();
     f_scale = std::sqrt(f_scale) + 1e-300;
     const double p_scale = std::max(p_.lpNorm<Eigen::Infinity>(), p_floor);
@@ -363,12 +415,18 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
 
   // Commit the converged state to the nodes; particles outside the mesh fall freely.
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (const int d = vdof_[i]; d >= 0) {
-      nodes.vx[i] = v_[d], nodes.vy[i] = v_[d + 1];
-      nodes.x[i] = xn_[i] + s.dt * nodes.vx[i];
-      nodes.y[i] = yn_[i] + s.dt * nodes.vy[i];
-    }
+    const int dx = vx_dof_[i], dy = vy_dof_[i];
+    if (dx < 0 && dy < 0) continue;
+    nodes.vx[i] = dx >= 0 ? v_[dx] : 0.0, nodes.vy[i] = dy >= 0 ? v_[dy] : 0.0;
+    nodes.x[i] = xn_[i] + s.dt * nodes.vx[i];
+    nodes.y[i] = yn_[i] + s.dt * nodes.vy[i];
   }
+  for (std::size_t k = 0; k < sn.size(); ++k) {
+    const int d = s_dof_[3 * k + 2];
+    nodes.wz[sn[k]] = d >= 0 ? v_[d] : 0.0;
+    nodes.rz[sn[k]] += s.dt * nodes.wz[sn[k]];
+  }
+  if (s.structure.model) s.structure.model->commit();
   move_free_particles(mesh, s, nodes);
   bubbles_by_triangle_.clear();
   for (int e = 0; e < ne; ++e)

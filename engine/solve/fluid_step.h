@@ -38,8 +38,18 @@
 #include "engine/mesh/remesher.h"
 #include "engine/solve/linear_solvers.h"
 #include "engine/solve/node_state.h"
+#include "engine/structure/structure_model.h"
 
 namespace pfem {
+
+// The structure in the monolithic step: its nodes are nodes of the NodeState (kind Structure,
+// boundary nodes of the fluid mesh) whose velocities are shared with the fluid; each also has a
+// rotation rate. The structure adds F_ext - M (v - v_n)/dt - C v - Fs(u_n + dt v) to its rows
+// and M/dt + C + dt dFs/du to the Newton matrix (theory §4).
+struct StructureCoupling {
+  structure::StructureModel* model = nullptr;
+  std::vector<int> node;  // NodeState index of each structure node
+};
 
 struct StepSettings {
   double dt = 0.0;
@@ -51,8 +61,9 @@ struct StepSettings {
   enum class Formulation { kCondensedBubble, kGlobalBubble };
   Formulation formulation = Formulation::kCondensedBubble;
   int threads = 1;  // for the element loops
-  // Wall pieces (node pairs): a particle falling freely may not pass through them.
+  // Wall and beam pieces (node pairs): no particle may pass through them within a step.
   std::span<const std::array<std::int32_t, 2>> walls;
+  StructureCoupling structure;  // no structure when model is null
 };
 
 struct StepReport {
@@ -87,7 +98,11 @@ class UnifiedStep {
                      const std::atomic<bool>* cancel = nullptr);
 
  private:
-  void number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes);
+  void number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes, const StepSettings& s);
+  // The structure's velocities, displacements at the iterate, and its residual rows added to rv_.
+  void structure_residual(const StepSettings& s);
+  // Entries of M/dt + C + dt dFs/du at the structure's unknowns.
+  void add_structure_tangent(const StepSettings& s, std::vector<Eigen::Triplet<double>>& t) const;
   void element_matrices(const mesh::FluidMesh& mesh, const StepSettings& s);
   // Residuals rv, rp (and the assembled Mp) at the current iterate.
   void residuals(const mesh::FluidMesh& mesh, const StepSettings& s);
@@ -105,7 +120,10 @@ class UnifiedStep {
   void correct_condensed_bubble(const mesh::FluidMesh& mesh);
 
   // Per step.
-  std::vector<int> vdof_;           // per node: first velocity unknown or -1
+  std::vector<int> vx_dof_, vy_dof_;  // per node: velocity unknowns or -1 (fixed, not active)
+  std::vector<int> s_dof_;            // per structure dof (3 per structure node): unknown or -1
+  Eigen::VectorXd s_un_, s_vn_;       // structure displacements and velocities at t_n
+  double s_force_scale_ = 0.0;        // magnitude of the structure's forces at the iterate
   std::vector<int> pdof_;           // per node: pressure unknown or -1
   int n_node_v_ = 0, n_v_ = 0, n_p_ = 0;
   std::vector<double> xn_, yn_, vxn_, vyn_, pn_;  // state at t_n (per node)

@@ -14,12 +14,14 @@ struct NodeState {
   std::vector<double> x, y;    // current positions [m]
   std::vector<double> vx, vy;  // velocities [m/s]
   std::vector<double> p;       // pressures [Pa]
+  std::vector<double> rz, wz;  // rotation [rad] and its rate [rad/s] (structure nodes only)
   std::vector<mesh::NodeKind> kind;
 
   std::size_t size() const { return x.size(); }
   int add(double px, double py, mesh::NodeKind k, double pvx = 0.0, double pvy = 0.0) {
     x0.push_back(px), y0.push_back(py), x.push_back(px), y.push_back(py);
     vx.push_back(pvx), vy.push_back(pvy), p.push_back(0.0), kind.push_back(k);
+    rz.push_back(0.0), wz.push_back(0.0);
     return static_cast<int>(x.size()) - 1;
   }
   // Walls and removed particles never move.
