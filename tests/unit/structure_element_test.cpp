@@ -3,6 +3,8 @@
 // rigid-body motions, agreement of the two elements when elastic, mass, bad input.
 #include <gtest/gtest.h>
 
+#include "tests/unit/expect_invalid.h"
+
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -214,17 +216,6 @@ TEST(BeamMass, TotalMassAndRotationalInertia) {
   Vec6 r;
   r << -n(0) * L / 2, -n(1) * L / 2, 1.0, n(0) * L / 2, n(1) * L / 2, 1.0;
   EXPECT_NEAR(r.dot(beam.mass_matrix() * r), m * L * L * L / 12.0, 1e-12);
-}
-
-void expect_invalid(auto make, const std::string& field, const std::string& rule) {
-  try {
-    make();
-    FAIL() << "expected std::invalid_argument for " << field;
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(what.rfind(field + ":", 0), 0u) << what;
-    EXPECT_NE(what.find(rule), std::string::npos) << what;
-  }
 }
 
 TEST(BeamElements, InvalidInputNamesTheProblem) {

@@ -2,6 +2,8 @@
 // consistent tangent against finite differences, the trial/commit protocol, bad input.
 #include <gtest/gtest.h>
 
+#include "tests/unit/expect_invalid.h"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -111,17 +113,6 @@ TEST(BilinearMaterial, TrialStatesStartFromTheCommittedState) {
   auto copy = m.clone();  // the clone carries the history
   copy->set_trial_strain(0.0035);
   EXPECT_NEAR(copy->stress(), 25.0, 1e-9);
-}
-
-void expect_invalid(auto make, const std::string& field, const std::string& rule) {
-  try {
-    make();
-    FAIL() << "expected std::invalid_argument for " << field;
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(what.rfind(field + ":", 0), 0u) << what;
-    EXPECT_NE(what.find(rule), std::string::npos) << what;
-  }
 }
 
 TEST(Materials, InvalidInputNamesTheProblem) {

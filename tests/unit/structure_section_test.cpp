@@ -3,6 +3,8 @@
 // against finite differences in yielded states, the trial/commit protocol, bad input.
 #include <gtest/gtest.h>
 
+#include "tests/unit/expect_invalid.h"
+
 #include <stdexcept>
 #include <string>
 
@@ -106,17 +108,6 @@ TEST(ElasticSection, ResultantsAreEAAndEI) {
   s.set_trial_deformation(Vec2(1e-3, 2e-2));
   EXPECT_DOUBLE_EQ(s.resultant()(0), kE * 0.06 * 1e-3);
   EXPECT_DOUBLE_EQ(s.resultant()(1), kE * 4.5e-4 * 2e-2);
-}
-
-void expect_invalid(auto make, const std::string& field, const std::string& rule) {
-  try {
-    make();
-    FAIL() << "expected std::invalid_argument for " << field;
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(what.rfind(field + ":", 0), 0u) << what;
-    EXPECT_NE(what.find(rule), std::string::npos) << what;
-  }
 }
 
 TEST(Sections, InvalidInputNamesTheProblem) {
