@@ -43,8 +43,19 @@ const char* method_name(SensitivityMethod m) {
   return m == SensitivityMethod::kDdm ? "ddm" : m == SensitivityMethod::kFdm ? "fdm" : "none";
 }
 
+// The problem of the model with one parameter set to value: rebuilt from the model, so that
+// every kind of target (fluid, thickness, materials, sections, beams) takes the value.
+Problem problem_with(const pfem::v1::Model& model, const Problem& base, const std::string& name, double value) {
+  pfem::v1::Model changed = model;
+  for (auto& p : *changed.mutable_parameters())
+    if (p.name() == name) p.set_value(value);
+  Problem pb = build_problem(changed);
+  pb.t_end = base.t_end, pb.dt = base.dt;  // the run's overrides
+  return pb;
+}
+
 // Central differences: 2 runs per parameter, step eps*|value| (eps when the value is 0).
-void finite_differences(const Problem& base, const RunOptions& o,
+void finite_differences(const pfem::v1::Model& model, const Problem& base, const RunOptions& o,
                         const std::vector<const ParameterSpec*>& params, RunResult& result) {
   const auto start = std::chrono::steady_clock::now();
   RunOptions quiet;
@@ -58,10 +69,8 @@ void finite_differences(const Problem& base, const RunOptions& o,
   std::vector<std::vector<std::vector<double>>> per_param;  // [param][row][recorder]
   for (const auto* p : params) {
     const double step = o.fdm_eps * (p->value != 0.0 ? std::abs(p->value) : 1.0);
-    Problem plus = base, minus = base;
-    set_parameter(plus, *p, p->value + step);
-    set_parameter(minus, *p, p->value - step);
-    const SimulationOutput a = simulate(plus, quiet), b = simulate(minus, quiet);
+    const SimulationOutput a = simulate(problem_with(model, base, p->name, p->value + step), quiet);
+    const SimulationOutput b = simulate(problem_with(model, base, p->name, p->value - step), quiet);
     for (const auto* r : {&a, &b}) {
       if (r->summary.status != RunStatus::kCompleted || r->responses.rows.size() != sens.time.size()) {
         result.summary.status = r->summary.status == RunStatus::kCancelled ? RunStatus::kCancelled : RunStatus::kFailed;
@@ -103,7 +112,7 @@ RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
     result.summary.parameter_values.push_back(p->value);
   }
   if (options.sensitivity == SensitivityMethod::kFdm && result.summary.status == RunStatus::kCompleted)
-    finite_differences(problem, options, params, result);
+    finite_differences(model, problem, options, params, result);
   result.summary.wall_seconds = result.summary.response_seconds + result.summary.sensitivity_seconds;
   return result;
 }

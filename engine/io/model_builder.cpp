@@ -115,8 +115,8 @@ int nearest_node(const NodeState& nodes, double x, double y) {
   return best;
 }
 
-}  // namespace
-
+// Sets the fluid and thickness targets of a parameter (structure targets are applied to the
+// model before the structure is built).
 void set_parameter(Problem& problem, const ParameterSpec& parameter, double value) {
   for (const auto& t : parameter.targets) {
     if (t == "fluid.rho") problem.fluid.rho = value;
@@ -125,6 +125,8 @@ void set_parameter(Problem& problem, const ParameterSpec& parameter, double valu
     else if (t == "thickness") problem.thickness = value;
   }
 }
+
+}  // namespace
 
 Problem build_problem(const pfem::v1::Model& model) {
   if (auto errors = validate_model(model); !errors.empty()) throw ModelError(std::move(errors));

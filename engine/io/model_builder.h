@@ -9,7 +9,4 @@ namespace pfem {
 // Validates first; throws ModelError listing every problem.
 Problem build_problem(const pfem::v1::Model& model);
 
-// Sets the targets of a parameter to value on an already built problem.
-void set_parameter(Problem& problem, const ParameterSpec& parameter, double value);
-
 }  // namespace pfem
