@@ -173,10 +173,10 @@ Problem build_problem(const pfem::v1::Model& model) {
     for (const auto& [name, k] : sb.node_index) structure_node_by_name[name] = pb.structure_nodes[k];
     for (const auto& beam : sb.beam_nodes) {
       for (std::size_t j = 1; j < beam.size(); ++j) {
-        const int a = beam[j - 1], b = beam[j];
-        pb.beam_segments.push_back({pb.structure_nodes[a], pb.structure_nodes[b]});
-        const auto& na = sb.model.node(a);
-        const auto& nb = sb.model.node(b);
+        const int from = beam[j - 1], to = beam[j];
+        pb.beam_segments.push_back({pb.structure_nodes[from], pb.structure_nodes[to]});
+        const auto& na = sb.model.node(from);
+        const auto& nb = sb.model.node(to);
         segments.push_back({na.x(0), na.x(1), nb.x(0), nb.x(1)});  // particles keep clear of beams too
       }
     }
