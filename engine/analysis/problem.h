@@ -21,6 +21,10 @@ struct RecorderSpec {
   std::string name;
   std::string quantity;  // see model.proto Recorder
   int node = -1;         // node index for nodal quantities
+  int element = -1;      // structure element for basic_force, fiber_stress, fiber_strain
+  int component = 0;     // basic force: 0 = N, 1 = M_i, 2 = M_j
+  int section_point = 0;  // fiber quantities: integration point and fiber (0 at the -y face)
+  int fiber = 0;
 };
 
 struct ParameterSpec {

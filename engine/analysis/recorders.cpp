@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/structure/disp_beam_column.h"
+#include "engine/structure/fiber_section.h"
+
 namespace pfem {
 
 double fluid_area(const mesh::FluidMesh& mesh, const NodeState& nodes) {
@@ -25,8 +28,20 @@ double fluid_extreme(const NodeState& nodes, const mesh::FluidMesh& mesh, bool u
 }
 }  // namespace
 
+namespace {
+// basic_force, fiber_stress or fiber_strain of a beam element (validated by the model checks).
+double element_value(const RecorderSpec& r, const structure::StructureModel& model) {
+  const auto& beam = dynamic_cast<const structure::BeamColumn2d&>(model.element(r.element));
+  if (r.quantity == "basic_force") return beam.basic_force()(r.component);
+  const auto& disp = dynamic_cast<const structure::DispBeamColumn2d&>(beam);
+  const auto& fibers = dynamic_cast<const structure::FiberSection&>(disp.section(r.section_point));
+  const auto& material = fibers.fiber_material(r.fiber);
+  return r.quantity == "fiber_stress" ? material.stress() : material.strain();
+}
+}  // namespace
+
 std::vector<double> sample_recorders(const Problem& problem, const NodeState& nodes,
-                                     const mesh::FluidMesh& mesh) {
+                                     const mesh::FluidMesh& mesh, const structure::StructureModel* structure) {
   std::vector<double> row;
   row.reserve(problem.recorders.size());
   for (const auto& r : problem.recorders) {
@@ -38,6 +53,7 @@ std::vector<double> sample_recorders(const Problem& problem, const NodeState& no
     else if (r.quantity == "vy") value = nodes.vy[i];
     else if (r.quantity == "p") value = nodes.p[i];
     else if (r.quantity == "rz") value = nodes.rz[i];
+    else if (r.element >= 0 && structure) value = element_value(r, *structure);
     else if (r.quantity == "fluid_area") value = fluid_area(mesh, nodes);
     else if (r.quantity == "front_x") value = fluid_extreme(nodes, mesh, true);
     else if (r.quantity == "front_y") value = fluid_extreme(nodes, mesh, false);

@@ -10,8 +10,9 @@ namespace pfem {
 // Area of the fluid mesh at the nodes' current positions [m^2].
 double fluid_area(const mesh::FluidMesh& mesh, const NodeState& nodes);
 
-// One value per recorder, in the problem's order. mesh is the mesh of the step just taken.
+// One value per recorder, in the problem's order. mesh is the mesh of the step just taken;
+// structure is the run's structure at its committed state (null without one).
 std::vector<double> sample_recorders(const Problem& problem, const NodeState& nodes,
-                                     const mesh::FluidMesh& mesh);
+                                     const mesh::FluidMesh& mesh, const structure::StructureModel* structure);
 
 }  // namespace pfem

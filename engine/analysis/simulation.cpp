@@ -110,7 +110,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   sum.remesh_seconds += since(t0);
   sum.fluid_area_initial = sum.fluid_area_final = fluid_area(mesh, nodes);
   out.responses.time.push_back(0.0);
-  out.responses.rows.push_back(sample_recorders(problem, nodes, mesh));
+  out.responses.rows.push_back(sample_recorders(problem, nodes, mesh, structure ? &*structure : nullptr));
   if (vtk) vtk->write(0.0, nodes, mesh);
 
   for (int n = 1; n <= total_steps; ++n) {
@@ -141,7 +141,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
       }
       if (n % problem.record_every == 0 || n == total_steps) {
         out.responses.time.push_back(time);
-        out.responses.rows.push_back(sample_recorders(problem, nodes, mesh));
+        out.responses.rows.push_back(sample_recorders(problem, nodes, mesh, structure ? &*structure : nullptr));
       }
       if (vtk && (n % vtk_every == 0 || n == total_steps)) vtk->write(time, nodes, mesh);
       sum.fluid_area_final = fluid_area(mesh, nodes);

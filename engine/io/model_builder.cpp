@@ -130,10 +130,6 @@ void set_parameter(Problem& problem, const ParameterSpec& parameter, double valu
 
 Problem build_problem(const pfem::v1::Model& model) {
   if (auto errors = validate_model(model); !errors.empty()) throw ModelError(std::move(errors));
-  for (int i = 0; i < model.recorders_size(); ++i)
-    if (is_element_quantity(model.recorders(i).quantity()))
-      throw ModelError("recorders[" + std::to_string(i) + "].quantity",
-                       "'" + model.recorders(i).quantity() + "' is not recorded yet");
   Problem pb;
   pb.fluid = {model.fluid().rho(), model.fluid().mu(), model.fluid().kappa()};
   pb.thickness = model.has_thickness() ? model.thickness() : 1.0;
@@ -161,7 +157,7 @@ Problem build_problem(const pfem::v1::Model& model) {
   }
 
   auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments);
-  std::map<std::string, int> structure_node_by_name;
+  std::map<std::string, int> structure_node_by_name, element_by_name;
   if (model.has_structure()) {
     pfem::v1::Model with_values = model;
     apply_parameter_overrides(with_values);
@@ -180,6 +176,7 @@ Problem build_problem(const pfem::v1::Model& model) {
         segments.push_back({na.x(0), na.x(1), nb.x(0), nb.x(1)});  // particles keep clear of beams too
       }
     }
+    element_by_name = sb.element_index;
     pb.structure = std::move(sb.model);
   }
   const std::size_t first_particle = pb.nodes.size();
@@ -202,6 +199,10 @@ Problem build_problem(const pfem::v1::Model& model) {
     RecorderSpec spec{r.name(), r.quantity(), -1};
     if (r.has_point()) spec.node = nearest_node(pb.nodes, r.point().x(), r.point().y());
     if (r.has_node()) spec.node = structure_node_by_name.at(r.node());  // validated above
+    if (r.has_element()) {
+      spec.element = element_by_name.at(r.element());
+      spec.component = r.component(), spec.section_point = r.section_point(), spec.fiber = r.fiber();
+    }
     pb.recorders.push_back(spec);
   }
   for (const auto& p : model.parameters()) {

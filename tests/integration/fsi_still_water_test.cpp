@@ -1,7 +1,7 @@
 // Still water held by a cantilever (theory §7, issue 3): a tank whose right side is a clamped
 // vertical beam of height L, water up to its tip. The hydrostatic load on the beam grows
 // linearly from 0 at the tip to q0 = rho g L t at the base, and the small-deflection tip
-// deflection is q0 L^4 / (30 EI). The beam is stiff (deflection ~ 1e-3 L) so that the
+// deflection is q0 L^4 / (30 EI) and the base moment q0 L^2 / 6. The beam is stiff (deflection ~ 1e-3 L) so that the
 // linear theory holds; the monolithic step must carry the pressure into the beam's nodes.
 #include <gtest/gtest.h>
 
@@ -33,7 +33,8 @@ std::string still_water_model() {
     },
     "analysis": {"dt": 0.001, "t_end": 0.3},
     "recorders": [{"name": "tip_ux", "quantity": "ux", "node": "tip"},
-                  {"name": "base_p", "quantity": "p", "node": "beam/1"}]
+                  {"name": "base_p", "quantity": "p", "node": "beam/1"},
+                  {"name": "base_moment", "quantity": "basic_force", "element": "beam/1", "component": 1}]
   })";
 }
 
@@ -50,6 +51,10 @@ TEST(FsiStillWater, CantileverSettlesToTheHydrostaticDeflection) {
   // The pressure at the beam's first node above the base (y = 2.5 mm) is hydrostatic.
   const double p_expected = kRho * kG * (kL - 0.0025);
   EXPECT_NEAR(last[1], p_expected, 0.02 * p_expected);
+  // The bending moment at the clamped end carries the whole triangular load: q0 L^2 / 6.
+  const double m_expected = q0 * kL * kL / 6.0;
+  std::printf("base moment %.6e N m, q0 L^2/6 = %.6e N m\n", last[2], m_expected);
+  EXPECT_NEAR(std::abs(last[2]), m_expected, 0.03 * m_expected);
 }
 
 }  // namespace
