@@ -49,19 +49,6 @@ std::vector<pfem::FunctionalValue> reference(pfem::SensitivityMethod method, dou
   return out;
 }
 
-// Skips when the engine does not offer `method` yet (it reports that as a ModelError).
-bool method_available(pfem::SensitivityMethod method) {
-  pfem::RunOptions options;
-  options.sensitivity = method;
-  options.t_end = 0.002;
-  try {
-    pfem::run(tiny_model(), options);
-    return true;
-  } catch (const pfem::ModelError&) {
-    return false;
-  }
-}
-
 void expect_bit_identical(pfem::v1::SensitivityMethod wire, pfem::SensitivityMethod engine) {
   TempDir dir("evaluate_exact");
   pfem::server::Server server(local_options(dir.path));

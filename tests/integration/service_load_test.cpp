@@ -15,20 +15,8 @@ constexpr int kClients = 32;
 constexpr int kCalls = 200;
 const double kRho[] = {990.0, 1000.0, 1010.0, 1020.0};
 
-bool ddm_available() {
-  pfem::RunOptions options;
-  options.sensitivity = pfem::SensitivityMethod::kDdm;
-  options.t_end = 0.002;
-  try {
-    pfem::run(tiny_model(), options);
-    return true;
-  } catch (const pfem::ModelError&) {
-    return false;
-  }
-}
-
 TEST(ServiceLoad, ThirtyTwoClientsTwoHundredEvaluations) {
-  const bool ddm = ddm_available();
+  const bool ddm = method_available(pfem::SensitivityMethod::kDdm);
   const auto method = ddm ? pfem::SensitivityMethod::kDdm : pfem::SensitivityMethod::kFdm;
   // Reference values: bottom_p max and its gradient, in process.
   std::vector<pfem::FunctionalValue> expected;
