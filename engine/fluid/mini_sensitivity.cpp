@@ -1,0 +1,78 @@
+#include "engine/fluid/mini_sensitivity.h"
+
+namespace pfem::fluid {
+
+ElementResidual element_residual(const MiniMatrices& m, double dt, const ElementState& s) {
+  return {m.F - m.M * ((s.v - s.vn) / dt) - m.K * s.v + m.G * s.p,
+          -m.Mp.cwiseProduct(s.p - s.pn) / dt - m.G.transpose() * s.v};
+}
+
+void geometric_derivatives(const TriangleGeometry& g, const MiniMatrices& m, double mu, double t, double dt,
+                           const ElementState& s, GeometricDerivatives& out) {
+  const double A = g.A;
+  const auto& c = g.c;
+  const auto& d = g.d;
+  const Vec8& v = s.v;
+  // d/dA: M, F and Mp are proportional to A, K to 1/A; G does not depend on A.
+  const Vec8 drv_dA = (m.F - m.M * ((v - s.vn) / dt) + m.K * v) / A;
+  const Vec3 drp_dA = -m.Mp.cwiseProduct(s.p - s.pn) / (dt * A);
+
+  // d/dc_e, d/dd_e of -K v + G p (rows) and of -G^T v, from (58)-(61).
+  Mat83 drv_dc, drv_dd;
+  Eigen::Matrix3d drp_dc, drp_dd;
+  const double k = mu * t / (6.0 * A), k4 = 27.0 * mu * t / (40.0 * A);
+  double sxc = 0, sxd = 0, syc = 0, syd = 0;  // sums of c_b, d_b times v_bx, v_by
+  for (int b = 0; b < 3; ++b) {
+    sxc += c[b] * v(2 * b), sxd += d[b] * v(2 * b);
+    syc += c[b] * v(2 * b + 1), syd += d[b] * v(2 * b + 1);
+  }
+  const double psum = s.p.sum(), vbx = v(6), vby = v(7);
+  for (int e = 0; e < 3; ++e) {
+    const double vex = v(2 * e), vey = v(2 * e + 1);
+    for (int a = 0; a < 3; ++a) {
+      const double same = a == e ? 1.0 : 0.0;
+      drv_dc(2 * a, e) = -k * (4 * same * sxc + 4 * c[a] * vex - 2 * same * syd + 3 * d[a] * vey) + same * t / 6 * psum;
+      drv_dd(2 * a, e) = -k * (3 * same * sxd + 3 * d[a] * vex + 3 * same * syc - 2 * c[a] * vey);
+      drv_dc(2 * a + 1, e) = -k * (3 * same * sxd - 2 * d[a] * vex + 3 * same * syc + 3 * c[a] * vey);
+      drv_dd(2 * a + 1, e) = -k * (3 * c[a] * vex - 2 * same * sxc + 4 * same * syd + 4 * d[a] * vey) + same * t / 6 * psum;
+      drp_dc(a, e) = -(t / 6 * vex - same * 9 * t / 40 * vbx);
+      drp_dd(a, e) = -(t / 6 * vey - same * 9 * t / 40 * vby);
+    }
+    drv_dc(6, e) = -k4 * (8 * c[e] * vbx + d[e] * vby) - 9 * t / 40 * s.p(e);
+    drv_dc(7, e) = -k4 * (d[e] * vbx + 6 * c[e] * vby);
+    drv_dd(6, e) = -k4 * (6 * d[e] * vbx + c[e] * vby);
+    drv_dd(7, e) = -k4 * (c[e] * vbx + 8 * d[e] * vby) - 9 * t / 40 * s.p(e);
+  }
+
+  // Chain rule to the corner coordinates.
+  for (int a = 0; a < 3; ++a) {
+    const int next = (a + 1) % 3, prev = (a + 2) % 3;
+    out.drv_dx.col(2 * a) = c[a] * drv_dA + drv_dd.col(next) - drv_dd.col(prev);
+    out.drv_dx.col(2 * a + 1) = d[a] * drv_dA + drv_dc.col(prev) - drv_dc.col(next);
+    out.drp_dx.col(2 * a) = c[a] * drp_dA + drp_dd.col(next) - drp_dd.col(prev);
+    out.drp_dx.col(2 * a + 1) = d[a] * drp_dA + drp_dc.col(prev) - drp_dc.col(next);
+  }
+}
+
+ElementResidual conditional_derivative(const TriangleGeometry& g, const MiniMatrices& m, const FluidConstants& f, double thickness,
+                                       double dt, const ElementState& s, const FluidSeed& seed) {
+  const Vec8 inertia_body = m.F - m.M * ((s.v - s.vn) / dt);  // proportional to rho t
+  const Vec3 compressibility = -m.Mp.cwiseProduct(s.p - s.pn) / dt;  // to t / kappa
+  const ElementResidual r = element_residual(m, dt, s);
+  ElementResidual out{seed.thickness / thickness * r.rv, seed.thickness / thickness * r.rp};
+  out.rv += seed.rho / f.rho * inertia_body;
+  out.rp -= seed.kappa / f.kappa * compressibility;
+  if (seed.mu != 0.0) {
+    // K is linear in mu; at mu = 0 it vanishes, so take the matrix of a unit viscosity then.
+    if (f.mu > 0.0) {
+      out.rv -= seed.mu / f.mu * (m.K * s.v);
+    } else {
+      MiniMatrices unit;
+      mini_matrices(g, {f.rho, 1.0, f.kappa}, thickness, 0.0, 0.0, unit);
+      out.rv -= seed.mu * (unit.K * s.v);
+    }
+  }
+  return out;
+}
+
+}  // namespace pfem::fluid
