@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/fluid/mini_element.h"
+#include "engine/fluid/mini_sensitivity.h"
 #include "engine/solve/node_state.h"
 #include "engine/structure/structure_model.h"
 
@@ -54,6 +55,10 @@ struct Problem {
   std::vector<int> structure_nodes;                        // node index of each structure node
   std::vector<RecorderSpec> recorders;
   std::vector<ParameterSpec> parameters;
+  // DDM: the parameters differentiated, in order, and how each moves the fluid constants (the
+  // structure holds its own seeds; nodes carry the sensitivity storage).
+  std::vector<std::string> sensitivity_params;
+  std::vector<fluid::FluidSeed> fluid_seeds;
 };
 
 }  // namespace pfem

@@ -15,4 +15,11 @@ double fluid_area(const mesh::FluidMesh& mesh, const NodeState& nodes);
 std::vector<double> sample_recorders(const Problem& problem, const NodeState& nodes,
                                      const mesh::FluidMesh& mesh, const structure::StructureModel* structure);
 
+// The DDM sensitivities of every recorder with respect to every differentiated parameter
+// (nodes.num_params of them), recorder-major: row[r * P + k] = d recorder_r / d theta_k. The
+// structure's must have its sensitivities set for the step (set_displacement_sensitivity).
+std::vector<double> sample_recorder_sensitivities(const Problem& problem, const NodeState& nodes,
+                                                  const mesh::FluidMesh& mesh,
+                                                  const structure::StructureModel* structure);
+
 }  // namespace pfem

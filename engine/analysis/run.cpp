@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include "engine/analysis/simulation.h"
@@ -34,8 +35,6 @@ void check_options(const RunOptions& o, const Problem& pb, std::vector<const Par
     if (chosen.empty() && errors.empty())
       errors.push_back({"params", "the model names no parameter to differentiate"});
   }
-  if (o.sensitivity == SensitivityMethod::kDdm)
-    errors.push_back({"sensitivity", "ddm is not available yet; use fdm"});
   if (!errors.empty()) throw ModelError(std::move(errors));
 }
 
@@ -102,9 +101,18 @@ RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
   if (options.dt) problem.dt = *options.dt;
   if (problem.dt > problem.t_end) throw ModelError("dt", "must not exceed t_end");
 
+  std::optional<Problem> with_seeds;  // DDM: the problem with the parameters' seeds
+  if (options.sensitivity == SensitivityMethod::kDdm) {
+    std::vector<std::string> names;
+    for (const auto* p : params) names.push_back(p->name);
+    with_seeds = build_problem(model, names);
+    with_seeds->t_end = problem.t_end, with_seeds->dt = problem.dt;
+  }
+
   RunResult result;
-  SimulationOutput sim = simulate(problem, options);
+  SimulationOutput sim = simulate(with_seeds ? *with_seeds : problem, options);
   result.responses = std::move(sim.responses);
+  result.sensitivities = std::move(sim.sensitivities);
   result.summary = sim.summary;
   result.summary.sensitivity_method = method_name(options.sensitivity);
   for (const auto* p : params) {

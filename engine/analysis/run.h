@@ -32,6 +32,9 @@ struct RunOptions {
   SensitivityMethod sensitivity = SensitivityMethod::kNone;
   std::vector<std::string> params;  // parameter names to differentiate; empty = all of the model's
   double fdm_eps = 1e-7;            // relative perturbation of the FDM
+  // DDM without the geometric matrices H and T (the approximation of the paper's baseline),
+  // only to show what dropping them costs; never for results.
+  bool drop_geometric_terms = false;
   std::string vtk_dir;              // when set, write .vtu files and a .pvd there
   std::optional<int> vtk_every;     // overrides analysis.vtk_every
   int threads = 1;                  // threads for element loops

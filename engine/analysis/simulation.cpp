@@ -50,13 +50,14 @@ StepReport advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettin
     total.assemble_seconds += r.assemble_seconds;
     total.factorize_seconds += r.factorize_seconds;
     total.solve_seconds += r.solve_seconds;
+    total.sensitivity_seconds += r.sensitivity_seconds;
   }
   ++sum.substeps;
   return total;
 }
 
 // New particles at the middle of the edges that have grown longer than insertion_length*h,
-// with the mean velocity and pressure of the edge's ends.
+// with the mean velocity and pressure of the edge's ends (and so the mean sensitivities).
 int insert_particles(const mesh::FluidMesh& mesh, const Problem& problem, NodeState& nodes) {
   if (problem.insertion_length <= 0.0) return 0;
   const auto edges = mesh::edges_to_split(mesh, nodes.x, nodes.y, nodes.kind, problem.insertion_length * problem.h);
@@ -65,6 +66,9 @@ int insert_particles(const mesh::FluidMesh& mesh, const Problem& problem, NodeSt
                             0.5 * (nodes.vx[a] + nodes.vx[b]), 0.5 * (nodes.vy[a] + nodes.vy[b]));
     nodes.x0[i] = nodes.x[i], nodes.y0[i] = nodes.y[i];  // displacements count from its birth
     nodes.p[i] = 0.5 * (nodes.p[a] + nodes.p[b]);
+    for (int k = 0; k < nodes.num_params; ++k)
+      for (int f = 0; f < NodeState::kSensitivityFields; ++f)
+        nodes.sensitivity(i, k)[f] = 0.5 * (nodes.sensitivity(a, k)[f] + nodes.sensitivity(b, k)[f]);
   }
   return static_cast<int>(edges.size());
 }
@@ -79,6 +83,9 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   sum.t_end = problem.t_end;
   const int total_steps = static_cast<int>(std::llround(problem.t_end / problem.dt));
   for (const auto& r : problem.recorders) out.responses.columns.push_back(r.name);
+  const bool ddm = !problem.sensitivity_params.empty();
+  for (const auto& r : problem.recorders)
+    for (const auto& p : problem.sensitivity_params) out.sensitivities.columns.push_back("d" + r.name + "/d" + p);
 
   NodeState nodes = problem.nodes;
   for (const auto k : nodes.kind) sum.particles += k == mesh::NodeKind::Fluid;
@@ -99,6 +106,8 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   settings.walls = constraints;  // beams too: they move little within a step
   if (problem.unified_fractional_step) settings.formulation = StepSettings::Formulation::kGlobalBubble;
   if (structure) settings.structure = {&*structure, problem.structure_nodes};
+  settings.sensitivity = problem.fluid_seeds;
+  settings.geometric_terms = !options.drop_geometric_terms;
   UnifiedStep step;
 
   const int vtk_every = options.vtk_every.value_or(problem.vtk_every);
@@ -109,8 +118,15 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   mesh::FluidMesh mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
   sum.remesh_seconds += since(t0);
   sum.fluid_area_initial = sum.fluid_area_final = fluid_area(mesh, nodes);
-  out.responses.time.push_back(0.0);
-  out.responses.rows.push_back(sample_recorders(problem, nodes, mesh, structure ? &*structure : nullptr));
+  const structure::StructureModel* model = structure ? &*structure : nullptr;
+  const auto record = [&](double time) {
+    out.responses.time.push_back(time);
+    out.responses.rows.push_back(sample_recorders(problem, nodes, mesh, model));
+    if (!ddm) return;
+    out.sensitivities.time.push_back(time);
+    out.sensitivities.rows.push_back(sample_recorder_sensitivities(problem, nodes, mesh, model));
+  };
+  record(0.0);
   if (vtk) vtk->write(0.0, nodes, mesh);
 
   for (int n = 1; n <= total_steps; ++n) {
@@ -132,6 +148,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
       sum.assemble_seconds += report.assemble_seconds;
       sum.factorize_seconds += report.factorize_seconds;
       sum.solve_seconds += report.solve_seconds;
+      sum.sensitivity_seconds += report.sensitivity_seconds;
       sum.max_elements = std::max<int>(sum.max_elements, static_cast<int>(mesh.triangles.size()));
       sum.steps = n;
       if (const int i = node_outside(nodes, problem.domain); i >= 0) {
@@ -139,10 +156,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
         msg << "particle " << i << " left the domain at (" << nodes.x[i] << ", " << nodes.y[i] << ")";
         throw StepFailure(msg.str());
       }
-      if (n % problem.record_every == 0 || n == total_steps) {
-        out.responses.time.push_back(time);
-        out.responses.rows.push_back(sample_recorders(problem, nodes, mesh, structure ? &*structure : nullptr));
-      }
+      if (n % problem.record_every == 0 || n == total_steps) record(time);
       if (vtk && (n % vtk_every == 0 || n == total_steps)) vtk->write(time, nodes, mesh);
       sum.fluid_area_final = fluid_area(mesh, nodes);
       sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind,
@@ -173,7 +187,8 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
       break;
     }
   }
-  sum.wall_seconds = sum.response_seconds = since(start);
+  sum.wall_seconds = since(start);
+  sum.response_seconds = sum.wall_seconds - sum.sensitivity_seconds;
   return out;
 }
 

@@ -7,6 +7,7 @@ namespace pfem {
 
 struct SimulationOutput {
   Histories responses;
+  Histories sensitivities;  // DDM: "d<recorder>/d<param>" columns when problem.sensitivity_params
   RunSummary summary;  // status, counts and timings of this one simulation
 };
 

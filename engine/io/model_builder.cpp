@@ -128,7 +128,30 @@ void set_parameter(Problem& problem, const ParameterSpec& parameter, double valu
 
 }  // namespace
 
-Problem build_problem(const pfem::v1::Model& model) {
+namespace {
+// Each differentiated parameter's targets, and its seed on the fluid constants.
+void sensitivity_seeds(const pfem::v1::Model& model, const std::vector<std::string>& names, Problem& pb,
+                       std::vector<std::vector<std::string>>& targets) {
+  for (const auto& name : names) {
+    fluid::FluidSeed seed;
+    targets.emplace_back();
+    for (const auto& p : model.parameters()) {
+      if (p.name() != name) continue;
+      for (const auto& t : p.targets()) {
+        targets.back().push_back(t);
+        if (t == "fluid.rho") seed.rho = 1.0;
+        else if (t == "fluid.mu") seed.mu = 1.0;
+        else if (t == "fluid.kappa") seed.kappa = 1.0;
+        else if (t == "thickness") seed.thickness = 1.0;
+      }
+    }
+    pb.sensitivity_params.push_back(name);
+    pb.fluid_seeds.push_back(seed);
+  }
+}
+}  // namespace
+
+Problem build_problem(const pfem::v1::Model& model, const std::vector<std::string>& sensitivity_params) {
   if (auto errors = validate_model(model); !errors.empty()) throw ModelError(std::move(errors));
   Problem pb;
   pb.fluid = {model.fluid().rho(), model.fluid().mu(), model.fluid().kappa()};
@@ -156,12 +179,14 @@ Problem build_problem(const pfem::v1::Model& model) {
     pb.domain = {wb.xmin - grow, wb.ymin - grow, wb.xmax + grow, wb.ymax + grow};
   }
 
+  std::vector<std::vector<std::string>> sensitivity_targets;
+  sensitivity_seeds(model, sensitivity_params, pb, sensitivity_targets);
   auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments);
   std::map<std::string, int> structure_node_by_name, element_by_name;
   if (model.has_structure()) {
     pfem::v1::Model with_values = model;
     apply_parameter_overrides(with_values);
-    StructureBuild sb = build_structure(with_values);
+    StructureBuild sb = build_structure(with_values, sensitivity_targets);
     for (int k = 0; k < sb.model.num_nodes(); ++k) {
       const auto& node = sb.model.node(k);
       pb.structure_nodes.push_back(pb.nodes.add(node.x(0), node.x(1), NodeKind::Structure));
@@ -211,6 +236,7 @@ Problem build_problem(const pfem::v1::Model& model) {
     set_parameter(pb, spec, spec.value);
     pb.parameters.push_back(spec);
   }
+  pb.nodes.set_num_params(static_cast<int>(sensitivity_params.size()));
   return pb;
 }
 

@@ -32,10 +32,11 @@ FieldError library_error(const std::invalid_argument& e, const std::string& pref
 }
 
 // A built section: the object for displacement-based beams and, when the section is elastic
-// (or a rectangle of an elastic material), its properties for elastic beams.
+// (or a rectangle of an elastic material), its properties (and their seeds) for elastic beams.
 struct BuiltSection {
   std::unique_ptr<structure::Section> section;
   std::optional<structure::ElasticSectionProperties> elastic;
+  structure::Seeds<structure::ElasticSectionProperties> elastic_seeds;
 };
 
 template <typename Items>
@@ -43,6 +44,68 @@ int find_named(const Items& items, const std::string& name) {
   for (int i = 0; i < items.size(); ++i)
     if (items[i].name() == name) return i;
   return -1;
+}
+
+// The seeds the sensitivity targets ask for, [parameter k][component index].
+struct SectionSeed {
+  structure::RectangleSeed rectangle;                  // fiber_rectangle: width, depth
+  structure::ElasticSectionProperties elastic{};       // elastic: e, area, inertia
+};
+struct TargetSeeds {
+  std::vector<std::vector<structure::BilinearParameters>> material;  // e0 holds E of an elastic one
+  std::vector<std::vector<SectionSeed>> section;
+  std::vector<std::vector<double>> rho;  // per beam
+};
+
+TargetSeeds target_seeds(const pfem::v1::Model& model,
+                         const std::vector<std::vector<std::string>>& targets) {
+  const auto& st = model.structure();
+  const int P = static_cast<int>(targets.size());
+  TargetSeeds seeds{
+      std::vector(P, std::vector<structure::BilinearParameters>(st.materials_size())),
+      std::vector(P, std::vector<SectionSeed>(st.sections_size())),
+      std::vector(P, std::vector<double>(st.beams_size(), 0.0))};
+  std::vector<FieldError> errors;
+  for (int k = 0; k < P; ++k) {
+    for (int j = 0; j < static_cast<int>(targets[k].size()); ++j) {
+      const std::string& target = targets[k][j];
+      try {
+        model_target_value(model, target, at(at("sensitivity_targets", k), j));  // resolves
+      } catch (const ModelError& e) {
+        errors.insert(errors.end(), e.errors().begin(), e.errors().end());
+        continue;
+      }
+      const auto ref = *parse_parameter_target(target);
+      const std::string& p = ref.property;
+      if (ref.kind == "material") {
+        auto& m = seeds.material[k][find_named(st.materials(), ref.name)];
+        (p == "e" ? m.e0 : p == "fy" ? m.fy : m.b) += 1.0;
+      } else if (ref.kind == "section") {
+        auto& s = seeds.section[k][find_named(st.sections(), ref.name)];
+        (p == "width"  ? s.rectangle.width
+         : p == "depth" ? s.rectangle.depth
+         : p == "e"     ? s.elastic.E
+         : p == "area"  ? s.elastic.A
+                        : s.elastic.I) += 1.0;
+      } else if (ref.kind == "beam") {
+        seeds.rho[k][find_named(st.beams(), ref.name)] += 1.0;
+      }  // fluid and thickness targets belong to the fluid
+    }
+  }
+  if (!errors.empty()) throw ModelError(std::move(errors));
+  return seeds;
+}
+
+void seed_material(structure::UniaxialMaterial& material, int k,
+                   const structure::BilinearParameters& d) {
+  if (auto* e = dynamic_cast<structure::ElasticMaterial*>(&material)) e->set_modulus_seed(k, d.e0);
+  if (auto* b = dynamic_cast<structure::BilinearMaterial*>(&material)) b->set_parameter_seed(k, d);
+}
+
+// d(E, b d, b d^3/12) of an elastic material's rectangle.
+structure::ElasticSectionProperties rectangle_seed(double b, double d, double dE,
+                                                   const structure::RectangleSeed& r) {
+  return {dE, r.width * d + b * r.depth, (r.width * d * d * d + 3.0 * b * d * d * r.depth) / 12.0};
 }
 
 // The proto field a target addresses: get() reads through const accessors only, set() writes.
@@ -151,11 +214,14 @@ void apply_parameter_overrides(pfem::v1::Model& model) {
   if (!errors.empty()) throw ModelError(std::move(errors));
 }
 
-StructureBuild build_structure(const pfem::v1::Model& model) {
+StructureBuild build_structure(const pfem::v1::Model& model,
+                               const std::vector<std::vector<std::string>>& sensitivity_targets) {
   if (auto errors = validate_structure(model); !errors.empty()) throw ModelError(std::move(errors));
   StructureBuild out;
   if (!model.has_structure()) return out;
   const auto& st = model.structure();
+  const TargetSeeds seeds = target_seeds(model, sensitivity_targets);
+  const int P = static_cast<int>(sensitivity_targets.size());
   auto& sm = out.model;
   std::vector<FieldError> errors;
 
@@ -187,6 +253,7 @@ StructureBuild build_structure(const pfem::v1::Model& model) {
         const auto& b = m.bilinear();
         materials[i] = std::make_unique<structure::BilinearMaterial>(b.fy(), b.e0(), b.hardening_ratio());
       }
+      for (int k = 0; k < P; ++k) seed_material(*materials[i], k, seeds.material[k][i]);
     } catch (const std::invalid_argument& e) {
       errors.push_back(library_error(e, path,
                                      {{"e", ".elastic.e"},
@@ -204,18 +271,29 @@ StructureBuild build_structure(const pfem::v1::Model& model) {
       if (s.has_elastic()) {
         const structure::ElasticSectionProperties p{s.elastic().e(), s.elastic().area(),
                                                     s.elastic().inertia()};
-        sections[i].section = std::make_unique<structure::ElasticSection>(p);
+        auto section = std::make_unique<structure::ElasticSection>(p);
+        for (int k = 0; k < P; ++k) {
+          section->set_property_seed(k, seeds.section[k][i].elastic);
+          sections[i].elastic_seeds.set(k, seeds.section[k][i].elastic);
+        }
+        sections[i].section = std::move(section);
         sections[i].elastic = p;
       } else {
         const auto& f = s.fiber_rectangle();
-        const auto* material = materials[find_named(st.materials(), f.material())].get();
+        const int m = find_named(st.materials(), f.material());
+        const auto* material = materials[m].get();
         if (!material) continue;  // its own error is reported
-        sections[i].section = std::make_unique<structure::FiberSection>(
+        auto section = std::make_unique<structure::FiberSection>(
             *material, structure::FiberSectionGeometry{f.width(), f.depth(), f.fibers()});
+        for (int k = 0; k < P; ++k) section->set_geometry_seed(k, seeds.section[k][i].rectangle);
+        sections[i].section = std::move(section);
         if (const auto* e = dynamic_cast<const structure::ElasticMaterial*>(material)) {
           const double b = f.width(), d = f.depth();
           sections[i].elastic =
               structure::ElasticSectionProperties{e->youngs_modulus(), b * d, b * d * d * d / 12.0};
+          for (int k = 0; k < P; ++k)
+            sections[i].elastic_seeds.set(k, rectangle_seed(b, d, seeds.material[k][m].e0,
+                                                            seeds.section[k][i].rectangle));
         }
       }
     } catch (const std::invalid_argument& e) {
@@ -256,11 +334,13 @@ StructureBuild build_structure(const pfem::v1::Model& model) {
     options.mass = b.has_mass() && b.mass() == "consistent" ? structure::MassKind::kConsistent
                                                             : structure::MassKind::kLumped;
     options.rho = b.rho();
+    for (int k = 0; k < P; ++k) options.rho_seeds.set(k, seeds.rho[k][i]);
     const bool elastic = b.element_type() == "elastic";
     const int points = b.has_integration_points() ? b.integration_points() : 2;
     try {
       for (int k = 1; k <= n; ++k) {
-        const int e = elastic ? sm.add_elastic_beam(nodes[k - 1], nodes[k], *section.elastic, options)
+        const int e = elastic ? sm.add_elastic_beam(nodes[k - 1], nodes[k], *section.elastic, options,
+                                                    section.elastic_seeds)
                               : sm.add_disp_beam(nodes[k - 1], nodes[k], *section.section, options, points);
         const std::string name = b.name() + "/" + std::to_string(k);
         out.element_index.emplace(name, e);
@@ -283,6 +363,7 @@ StructureBuild build_structure(const pfem::v1::Model& model) {
     }
   }
   if (!errors.empty()) throw ModelError(std::move(errors));
+  sm.set_num_parameters(P);
   return out;
 }
 

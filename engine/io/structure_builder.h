@@ -36,7 +36,14 @@ struct StructureBuild {
 // an absent structure gives an empty build. Throws ModelError listing every problem, with
 // field paths ("structure.materials[1].bilinear.fy: must be > 0"); a std::invalid_argument
 // from engine/structure is reported at the path of the field it names.
-StructureBuild build_structure(const pfem::v1::Model& model);
+//
+// DDM: sensitivity_targets[k] lists the targets of parameter theta_k (same forms as
+// Parameter.targets). Each structural target seeds its constant with 1 (several targets of one
+// parameter add up; derived constants follow, e.g. A = b d and I = b d^3/12 of an elastic beam
+// built from a rectangle); "fluid.*" and "thickness" are ignored. The model is then sized for
+// P = sensitivity_targets.size() parameters. Errors at "sensitivity_targets[k][j]".
+StructureBuild build_structure(const pfem::v1::Model& model,
+                               const std::vector<std::vector<std::string>>& sensitivity_targets = {});
 
 // The current value of a parameter target (thickness: 1 when absent; material e: E of an
 // elastic material, E0 of a bilinear one). Throws ModelError at `path` for a target of an

@@ -75,7 +75,7 @@ void UnifiedStep::number_unknowns(const mesh::FluidMesh& mesh, const NodeState& 
 void UnifiedStep::element_matrices(const mesh::FluidMesh& mesh, const StepSettings& s) {
   const int ne = static_cast<int>(mesh.triangles.size());
   mats_.resize(ne);
-  twice_areas_.resize(ne);
+  geometries_.resize(ne);
 #pragma omp parallel for schedule(static) num_threads(s.threads)
   for (int e = 0; e < ne; ++e) {
     std::array<double, 3> x, y;
@@ -84,10 +84,27 @@ void UnifiedStep::element_matrices(const mesh::FluidMesh& mesh, const StepSettin
       x[a] = xn_[i] + (dx >= 0 ? s.dt * v_[dx] : 0.0);
       y[a] = yn_[i] + (dy >= 0 ? s.dt * v_[dy] : 0.0);
     }
-    const fluid::TriangleGeometry g = fluid::triangle_geometry(x, y);
-    twice_areas_[e] = g.A;
-    fluid::mini_matrices(g, s.fluid, s.thickness, s.gx, s.gy, mats_[e]);
+    geometries_[e] = fluid::triangle_geometry(x, y);
+    fluid::mini_matrices(geometries_[e], s.fluid, s.thickness, s.gx, s.gy, mats_[e]);
   }
+}
+
+fluid::ElementState UnifiedStep::element_state(const mesh::FluidMesh& mesh, int e) const {
+  fluid::ElementState st;
+  const auto& tri = mesh.triangles[e];
+  for (int a = 0; a < 3; ++a) {
+    const int i = tri[a], dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];
+    st.v(2 * a) = dx >= 0 ? v_[dx] : 0.0;
+    st.v(2 * a + 1) = dy >= 0 ? v_[dy] : 0.0;
+    st.vn(2 * a) = vxn_[i];
+    st.vn(2 * a + 1) = vyn_[i];
+    st.p(a) = q >= 0 ? p_[q] : 0.0;
+    st.pn(a) = pn_[i];
+  }
+  const int b = n_node_v_ + 2 * e;
+  st.v(6) = v_[b], st.v(7) = v_[b + 1];
+  st.vn.tail<2>() = vbn_[e];
+  return st;
 }
 
 void UnifiedStep::residuals(const mesh::FluidMesh& mesh, const StepSettings& s) {
@@ -100,29 +117,17 @@ void UnifiedStep::residuals(const mesh::FluidMesh& mesh, const StepSettings& s) 
   for (int e = 0; e < ne; ++e) {
     const auto& m = mats_[e];
     const auto& tri = mesh.triangles[e];
-    fluid::Vec8 v, vn;
-    fluid::Vec3 p, pn;
-    for (int a = 0; a < 3; ++a) {
-      const int i = tri[a], dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];
-      v(2 * a) = dx >= 0 ? v_[dx] : 0.0;
-      v(2 * a + 1) = dy >= 0 ? v_[dy] : 0.0;
-      vn(2 * a) = vxn_[i];
-      vn(2 * a + 1) = vyn_[i];
-      p(a) = q >= 0 ? p_[q] : 0.0;
-      pn(a) = pn_[i];
-    }
-    const int b = n_node_v_ + 2 * e;
-    v(6) = v_[b], v(7) = v_[b + 1];
-    vn(6) = vbn_[e](0), vn(7) = vbn_[e](1);
-    const fluid::Vec8 rv = m.F - m.M * ((v - vn) * inv_dt) - m.K * v + m.G * p;
-    const fluid::Vec3 rp = -m.Mp.cwiseProduct(p - pn) * inv_dt - m.G.transpose() * v;
-    const fluid::Vec3 rp_abs = m.Mp.cwiseProduct(p - pn).cwiseAbs() * inv_dt + m.G.cwiseAbs().transpose() * v.cwiseAbs();
+    const fluid::ElementState st = element_state(mesh, e);
+    const auto [rv, rp] = fluid::element_residual(m, s.dt, st);
+    const fluid::Vec3 rp_abs =
+        m.Mp.cwiseProduct(st.p - st.pn).cwiseAbs() * inv_dt + m.G.cwiseAbs().transpose() * st.v.cwiseAbs();
     for (int a = 0; a < 3; ++a) {
       const int i = tri[a], dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];
       if (dx >= 0) rv_[dx] += rv(2 * a);
       if (dy >= 0) rv_[dy] += rv(2 * a + 1);
       if (q >= 0) rp_[q] += rp(a), rp_abs_[q] += rp_abs(a), mp_[q] += m.Mp(a);
     }
+    const int b = n_node_v_ + 2 * e;
     rv_[b] += rv(6), rv_[b + 1] += rv(7);
   }
 }
@@ -175,26 +180,39 @@ void UnifiedStep::correct_global_bubble(const StepSettings& s) {
   p_ += dp_star - (s.dt * (g_.transpose() * dv).array() / factor_mp_.array()).matrix();
 }
 
-void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze) {
+void UnifiedStep::condensed_triplets(const mesh::FluidMesh& mesh, const StepSettings& s,
+                                     const std::vector<fluid::GeometricDerivatives>* geometric,
+                                     std::vector<BubbleCondensation>& bubbles,
+                                     std::vector<Eigen::Triplet<double>>& t) const {
   const int ne = static_cast<int>(mesh.triangles.size());
-  bubbles_.resize(ne);
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(81 * ne + n_p_);
+  bubbles.resize(ne);
+  t.reserve(t.size() + 81 * ne + n_p_);
   const double inv_dt = 1.0 / s.dt;
   for (int e = 0; e < ne; ++e) {
     const auto& m = mats_[e];
     const auto& tri = mesh.triangles[e];
-    const fluid::Mat8 a = m.M * inv_dt + m.K;
-    auto& b = bubbles_[e];
+    // Element Jacobian -d(rv, rp)/d(v, p): [a -G; Q G_b^T Mp/dt] with a = M/dt + K - dt drv/dx and
+    // Q = G_c^T - dt drp/dx (the coordinates move with the corner velocities, x = x_n + dt v).
+    fluid::Mat8 a = m.M * inv_dt + m.K;
+    Eigen::Matrix<double, 3, 6> q = m.G.block<6, 3>(0, 0).transpose();
+    if (geometric) {
+      a.leftCols<6>() -= s.dt * (*geometric)[e].drv_dx;
+      q -= s.dt * (*geometric)[e].drp_dx;
+    }
+    auto& b = bubbles[e];
     b.inv_bb = a.block<2, 2>(6, 6).inverse();
     b.a_bc = a.block<2, 6>(6, 0);
+    b.a_cb = a.block<6, 2>(0, 6);
     b.g_b = m.G.block<2, 3>(6, 0);
-    // Element Schur complements: A' = A_cc - A_cb Abb^-1 A_bc, G' = G_c - A_cb Abb^-1 G_b,
-    // C = G_b^T Abb^-1 G_b.
-    const Eigen::Matrix<double, 6, 2> acb_inv = b.a_bc.transpose() * b.inv_bb;
+    // Element Schur complements with dvb = Abb^-1 (r_b - A_bc dvc + G_b dp):
+    // A' = A_cc - A_cb Abb^-1 A_bc, G' = G_c - A_cb Abb^-1 G_b (velocity rows),
+    // Q' = Q - G_b^T Abb^-1 A_bc, C = G_b^T Abb^-1 G_b (pressure rows, negated below).
+    const Eigen::Matrix<double, 6, 2> acb_inv = b.a_cb * b.inv_bb;
+    const Eigen::Matrix<double, 2, 3> inv_gb = b.inv_bb * b.g_b;
     const Eigen::Matrix<double, 6, 6> ac = a.block<6, 6>(0, 0) - acb_inv * b.a_bc;
     const Eigen::Matrix<double, 6, 3> gc = m.G.block<6, 3>(0, 0) - acb_inv * b.g_b;
-    const Eigen::Matrix3d cp = b.g_b.transpose() * b.inv_bb * b.g_b;
+    const Eigen::Matrix<double, 3, 6> qc = q - inv_gb.transpose() * b.a_bc;
+    const Eigen::Matrix3d cp = b.g_b.transpose() * inv_gb;
     std::array<int, 6> dof;
     std::array<int, 3> pdof;
     for (int k = 0; k < 3; ++k) {
@@ -206,7 +224,7 @@ void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const 
       for (int c = 0; c < 6; ++c)
         if (dof[c] >= 0) t.emplace_back(dof[r], dof[c], ac(r, c));
       for (int k = 0; k < 3; ++k)
-        if (pdof[k] >= 0) t.emplace_back(dof[r], pdof[k], -gc(r, k)), t.emplace_back(pdof[k], dof[r], -gc(r, k));
+        if (pdof[k] >= 0) t.emplace_back(dof[r], pdof[k], -gc(r, k)), t.emplace_back(pdof[k], dof[r], -qc(k, r));
     }
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c)
@@ -214,53 +232,66 @@ void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const 
   }
   for (int q = 0; q < n_p_; ++q) t.emplace_back(n_node_v_ + q, n_node_v_ + q, -mp_[q] * inv_dt);
   add_structure_tangent(s, t);
+}
+
+void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze) {
+  std::vector<Eigen::Triplet<double>> t;
+  condensed_triplets(mesh, s, nullptr, bubbles_, t);
   matrix_.resize(n_node_v_ + n_p_, n_node_v_ + n_p_);
   matrix_.setFromTriplets(t.begin(), t.end());
   if (analyze) condensed_solver_.analyze(matrix_);
   condensed_solver_.factorize(matrix_);
 }
 
-void UnifiedStep::correct_condensed_bubble(const mesh::FluidMesh& mesh) {
-  // Right-hand side with the bubble residuals condensed in; pressure rows negated.
-  Eigen::VectorXd rhs(n_node_v_ + n_p_);
-  rhs.head(n_node_v_) = rv_.head(n_node_v_);
-  rhs.tail(n_p_) = -rp_;
+void UnifiedStep::solve_condensed(const mesh::FluidMesh& mesh, const std::vector<BubbleCondensation>& bubbles,
+                                  const CondensedSolve& solve, const Eigen::MatrixXd& rv, const Eigen::MatrixXd& rp,
+                                  Eigen::MatrixXd& dv, Eigen::MatrixXd& dp) const {
+  // Right-hand side with the bubble rows condensed in; pressure rows negated.
+  const long cols = rv.cols();
+  Eigen::MatrixXd rhs(n_node_v_ + n_p_, cols);
+  rhs.topRows(n_node_v_) = rv.topRows(n_node_v_);
+  rhs.bottomRows(n_p_) = -rp;
   const int ne = static_cast<int>(mesh.triangles.size());
-  std::vector<Eigen::Vector2d> z(ne);  // Abb^-1 r_b per element
+  std::vector<Eigen::Matrix<double, 2, Eigen::Dynamic>> z(ne);  // Abb^-1 r_b per element
   for (int e = 0; e < ne; ++e) {
-    const auto& b = bubbles_[e];
-    const int bub = n_node_v_ + 2 * e;
-    z[e] = b.inv_bb * Eigen::Vector2d(rv_[bub], rv_[bub + 1]);
-    const Eigen::Matrix<double, 6, 1> fc = b.a_bc.transpose() * z[e];
-    const Eigen::Vector3d fp = b.g_b.transpose() * z[e];
+    const auto& b = bubbles[e];
+    z[e] = b.inv_bb * rv.middleRows<2>(n_node_v_ + 2 * e);
+    const Eigen::Matrix<double, 6, Eigen::Dynamic> fc = b.a_cb * z[e];
+    const Eigen::Matrix<double, 3, Eigen::Dynamic> fp = b.g_b.transpose() * z[e];
     const auto& tri = mesh.triangles[e];
     for (int k = 0; k < 3; ++k) {
-      if (const int dx = vx_dof_[tri[k]]; dx >= 0) rhs[dx] -= fc(2 * k);
-      if (const int dy = vy_dof_[tri[k]]; dy >= 0) rhs[dy] -= fc(2 * k + 1);
-      if (const int q = pdof_[tri[k]]; q >= 0) rhs[n_node_v_ + q] += fp(k);
+      if (const int dx = vx_dof_[tri[k]]; dx >= 0) rhs.row(dx) -= fc.row(2 * k);
+      if (const int dy = vy_dof_[tri[k]]; dy >= 0) rhs.row(dy) -= fc.row(2 * k + 1);
+      if (const int q = pdof_[tri[k]]; q >= 0) rhs.row(n_node_v_ + q) += fp.row(k);
     }
   }
-  const Eigen::VectorXd x = condensed_solver_.solve(rhs);
-  v_.head(n_node_v_) += x.head(n_node_v_);
-  p_ += x.tail(n_p_);
+  const Eigen::MatrixXd x = solve(rhs);
+  dv.resize(n_v_, cols);
+  dv.topRows(n_node_v_) = x.topRows(n_node_v_);
+  dp = x.bottomRows(n_p_);
   // Recover each bubble: dvb = Abb^-1 (r_b - A_bc dvc + G_b dp).
+  Eigen::Matrix<double, 6, Eigen::Dynamic> dvc(6, cols);
+  Eigen::Matrix<double, 3, Eigen::Dynamic> dpe(3, cols);
   for (int e = 0; e < ne; ++e) {
-    const auto& b = bubbles_[e];
+    const auto& b = bubbles[e];
     const auto& tri = mesh.triangles[e];
-    Eigen::Matrix<double, 6, 1> dvc;
-    Eigen::Vector3d dp;
     for (int k = 0; k < 3; ++k) {
       const int dx = vx_dof_[tri[k]], dy = vy_dof_[tri[k]], q = pdof_[tri[k]];
-      dvc(2 * k) = dx >= 0 ? x[dx] : 0.0;
-      dvc(2 * k + 1) = dy >= 0 ? x[dy] : 0.0;
-      dp(k) = q >= 0 ? x[n_node_v_ + q] : 0.0;
+      if (dx >= 0) dvc.row(2 * k) = x.row(dx); else dvc.row(2 * k).setZero();
+      if (dy >= 0) dvc.row(2 * k + 1) = x.row(dy); else dvc.row(2 * k + 1).setZero();
+      if (q >= 0) dpe.row(k) = x.row(n_node_v_ + q); else dpe.row(k).setZero();
     }
-    const Eigen::Vector2d dvb = z[e] + b.inv_bb * (b.g_b * dp - b.a_bc * dvc);
-    const int bub = n_node_v_ + 2 * e;
-    v_[bub] += dvb(0), v_[bub + 1] += dvb(1);
+    dv.middleRows<2>(n_node_v_ + 2 * e) = z[e] + b.inv_bb * (b.g_b * dpe - b.a_bc * dvc);
   }
 }
 
+void UnifiedStep::correct_condensed_bubble(const mesh::FluidMesh& mesh) {
+  Eigen::MatrixXd dv, dp;
+  solve_condensed(mesh, bubbles_, [this](const Eigen::MatrixXd& b) { return condensed_solver_.solve(b); },
+                  rv_, rp_, dv, dp);
+  v_ += dv.col(0);
+  p_ += dp.col(0);
+}
 
 void UnifiedStep::structure_residual(const StepSettings& s) {
   auto* model = s.structure.model;
@@ -291,8 +322,8 @@ void UnifiedStep::add_structure_tangent(const StepSettings& s, std::vector<Eigen
 
 void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s,
                                    const NodeState& nodes) const {
-  for (const double a : twice_areas_)
-    if (!(a > 0.0)) throw StepFailure("a triangle inverted within the step");
+  for (const auto& g : geometries_)
+    if (!(g.A > 0.0)) throw StepFailure("a triangle inverted within the step");
   // Only particles sharing a triangle with a wall node are near enough to cross one.
   for (const auto& t : mesh.triangles) {
     const bool by_wall = nodes.kind[t[0]] == mesh::NodeKind::Wall || nodes.kind[t[1]] == mesh::NodeKind::Wall ||
@@ -314,6 +345,13 @@ void UnifiedStep::move_free_particles(const mesh::FluidMesh& mesh, const StepSet
     const bool hits = crosses_wall(s, nodes, xn_[i], yn_[i], x, y);
     nodes.vx[i] = hits ? 0.0 : vx, nodes.vy[i] = hits ? 0.0 : vy;
     nodes.x[i] = hits ? xn_[i] : x, nodes.y[i] = hits ? yn_[i] : y;
+    // Sensitivities follow the same rule (gravity is no parameter).
+    for (int k = 0; k < nodes.num_params; ++k) {
+      double* d = nodes.sensitivity(i, k);
+      if (hits) d[NodeState::kDvx] = d[NodeState::kDvy] = 0.0;
+      d[NodeState::kDx] += s.dt * d[NodeState::kDvx];
+      d[NodeState::kDy] += s.dt * d[NodeState::kDvy];
+    }
   }
 }
 
@@ -329,10 +367,14 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   // Initial iterate: the velocities, pressures and bubbles of t_n.
   v_.setZero(n_v_);
   const int ne = static_cast<int>(mesh.triangles.size());
+  const int num_params = static_cast<int>(s.sensitivity.size());
   vbn_.assign(ne, Eigen::Vector2d::Zero());
+  dvbn_.assign(num_params > 0 ? ne : 0, BubbleSensitivity::Zero(2, num_params));
   for (int e = 0; e < ne; ++e) {
-    if (auto it = bubbles_by_triangle_.find(triangle_key(mesh.triangles[e])); it != bubbles_by_triangle_.end())
-      vbn_[e] = it->second;
+    const std::uint64_t key = triangle_key(mesh.triangles[e]);
+    if (auto it = bubbles_by_triangle_.find(key); it != bubbles_by_triangle_.end()) vbn_[e] = it->second;
+    if (auto it = bubble_sensitivity_by_triangle_.find(key); num_params > 0 && it != bubble_sensitivity_by_triangle_.end())
+      dvbn_[e] = it->second;
     v_[n_node_v_ + 2 * e] = vbn_[e](0), v_[n_node_v_ + 2 * e + 1] = vbn_[e](1);
   }
   p_.setZero(n_p_);
@@ -382,6 +424,11 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
       throw StepFailure("Newton produced a non-finite residual at iteration " + std::to_string(it));
     if (report.residual <= s.tolerance) {
       check_admissible(mesh, s, nodes);
+      if (num_params > 0) {
+        t0 = Clock::now();
+        solve_sensitivities(mesh, s, nodes);
+        report.sensitivity_seconds = seconds_since(t0);
+      }
       break;
     }
     if (it == s.max_iterations) {
@@ -427,12 +474,17 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     nodes.wz[sn[k]] = d >= 0 ? v_[d] : 0.0;
     nodes.rz[sn[k]] += s.dt * nodes.wz[sn[k]];
   }
+  for (std::size_t i = 0; i < nodes.size(); ++i) nodes.p[i] = pdof_[i] >= 0 ? p_[pdof_[i]] : 0.0;
+  if (num_params > 0) commit_sensitivities(s, nodes);
   if (s.structure.model) s.structure.model->commit();
   move_free_particles(mesh, s, nodes);
   bubbles_by_triangle_.clear();
-  for (int e = 0; e < ne; ++e)
-    bubbles_by_triangle_[triangle_key(mesh.triangles[e])] = v_.segment<2>(n_node_v_ + 2 * e);
-  for (std::size_t i = 0; i < nodes.size(); ++i) nodes.p[i] = pdof_[i] >= 0 ? p_[pdof_[i]] : 0.0;
+  bubble_sensitivity_by_triangle_.clear();
+  for (int e = 0; e < ne; ++e) {
+    const std::uint64_t key = triangle_key(mesh.triangles[e]);
+    bubbles_by_triangle_[key] = v_.segment<2>(n_node_v_ + 2 * e);
+    if (num_params > 0) bubble_sensitivity_by_triangle_[key] = dv_.middleRows<2>(n_node_v_ + 2 * e);
+  }
   return report;
 }
 

@@ -29,12 +29,14 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <unordered_map>
 #include <stdexcept>
 #include <vector>
 
 #include "engine/fluid/mini_element.h"
+#include "engine/fluid/mini_sensitivity.h"
 #include "engine/mesh/remesher.h"
 #include "engine/solve/linear_solvers.h"
 #include "engine/solve/node_state.h"
@@ -64,6 +66,11 @@ struct StepSettings {
   // Wall and beam pieces (node pairs): no particle may pass through them within a step.
   std::span<const std::array<std::int32_t, 2>> walls;
   StructureCoupling structure;  // no structure when model is null
+  // DDM (theory §5): one seed per parameter (how it moves the fluid constants; the structure's
+  // seeds live in its model); empty for no sensitivities. Without geometric terms H and T are
+  // dropped, the approximation of the paper's baseline, kept only to show what it costs.
+  std::span<const fluid::FluidSeed> sensitivity;
+  bool geometric_terms = true;
 };
 
 struct StepReport {
@@ -75,6 +82,7 @@ struct StepReport {
   double assemble_seconds = 0.0;
   double factorize_seconds = 0.0;
   double solve_seconds = 0.0;
+  double sensitivity_seconds = 0.0;
 };
 
 // Thrown when Newton does not converge or produces non-finite values.
@@ -98,23 +106,53 @@ class UnifiedStep {
                      const std::atomic<bool>* cancel = nullptr);
 
  private:
+  // Per element, from a condensed factorisation: the bubble block inverse and
+  // its couplings to the corner velocities (bubble row a_bc, corner rows a_cb) and pressures.
+  struct BubbleCondensation {
+    Eigen::Matrix2d inv_bb;
+    Eigen::Matrix<double, 2, 6> a_bc;
+    Eigen::Matrix<double, 6, 2> a_cb;
+    Eigen::Matrix<double, 2, 3> g_b;
+  };
+
   void number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes, const StepSettings& s);
   // The structure's velocities, displacements at the iterate, and its residual rows added to rv_.
   void structure_residual(const StepSettings& s);
   // Entries of M/dt + C + dt dFs/du at the structure's unknowns.
   void add_structure_tangent(const StepSettings& s, std::vector<Eigen::Triplet<double>>& t) const;
   void element_matrices(const mesh::FluidMesh& mesh, const StepSettings& s);
+  fluid::ElementState element_state(const mesh::FluidMesh& mesh, int e) const;
   // Residuals rv, rp (and the assembled Mp) at the current iterate.
   void residuals(const mesh::FluidMesh& mesh, const StepSettings& s);
   // Assemble and factorise the Newton matrix of the chosen formulation at the current iterate.
   void factorize_global_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
   void factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
+  // Triplets of the bubble-condensed [v; p] matrix (pressure rows negated) and each element's
+  // condensation. With geometric derivatives (the DDM) it is the exact Jacobian, dt H and dt T
+  // included, and no longer symmetric.
+  void condensed_triplets(const mesh::FluidMesh& mesh, const StepSettings& s,
+                          const std::vector<fluid::GeometricDerivatives>* geometric,
+                          std::vector<BubbleCondensation>& bubbles, std::vector<Eigen::Triplet<double>>& t) const;
+  // Solves the condensed system held by `solve` for right-hand sides in the full unknowns
+  // (velocity rows rv, bubbles included, and pressure rows rp; one column each), returning the
+  // solutions dv (bubbles recovered) and dp.
+  using CondensedSolve = std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)>;
+  void solve_condensed(const mesh::FluidMesh& mesh, const std::vector<BubbleCondensation>& bubbles,
+                       const CondensedSolve& solve, const Eigen::MatrixXd& rv, const Eigen::MatrixXd& rp,
+                       Eigen::MatrixXd& dv, Eigen::MatrixXd& dp) const;
   // A converged state with an inverted triangle, or with a particle moved across a wall, is no
   // solution of the PFEM step: throws StepFailure so that the step is retried shorter.
   void check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) const;
   // Moves the particles outside the mesh ballistically; one whose path crosses a wall stops
   // where it was (it hits the wall and sticks, as water does at a no-slip wall).
   void move_free_particles(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const;
+  // The DDM of the converged step (engine/solve/step_sensitivity.cpp): the exact Jacobian with
+  // H, T and the structure's consistent tangent, factorised once by UMFPACK, and one
+  // right-hand side per parameter; then the sensitivities committed to the nodes, the bubbles
+  // and the structure (before the structure's own commit).
+  void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
+  Eigen::VectorXd structure_sensitivity_rhs(const StepSettings& s, const NodeState& nodes, int k) const;
+  void commit_sensitivities(const StepSettings& s, NodeState& nodes);
   // Newton corrections from the current residuals with the last factorisation.
   void correct_global_bubble(const StepSettings& s);
   void correct_condensed_bubble(const mesh::FluidMesh& mesh);
@@ -135,19 +173,21 @@ class UnifiedStep {
   Eigen::VectorXd rv_, rp_, mp_;    // residuals and assembled lumped pressure mass
   Eigen::VectorXd rp_abs_;          // per pressure row: sum of the magnitudes of its terms
   std::vector<fluid::MiniMatrices> mats_;
-  std::vector<double> twice_areas_;  // per element, at the current iterate
-  // Per element, from the last factorisation (kCondensedBubble): the bubble block inverse and
-  // its couplings to the corner velocities and pressures.
-  struct BubbleCondensation {
-    Eigen::Matrix2d inv_bb;
-    Eigen::Matrix<double, 2, 6> a_bc;
-    Eigen::Matrix<double, 2, 3> g_b;
-  };
-  std::vector<BubbleCondensation> bubbles_;
+  std::vector<fluid::TriangleGeometry> geometries_;  // per element, at the current iterate
+  std::vector<BubbleCondensation> bubbles_;  // of the last factorisation (kCondensedBubble)
   SparseMatrix matrix_, g_;
   Eigen::VectorXd factor_mp_;  // Mp at the last factorisation
   SymmetricSolver global_solver_{SymmetricBackend::kCholmodLlt};
   SymmetricSolver condensed_solver_{SymmetricBackend::kCholmodLdlt};
+  // DDM: bubble sensitivities (2 x P) at t_n per element and of the last step by triangle; the
+  // solved sensitivities of the unknowns (one column per parameter).
+  using BubbleSensitivity = Eigen::Matrix<double, 2, Eigen::Dynamic>;
+  std::vector<BubbleSensitivity> dvbn_;
+  std::unordered_map<std::uint64_t, BubbleSensitivity> bubble_sensitivity_by_triangle_;
+  Eigen::MatrixXd dv_, dp_;
+  std::vector<BubbleCondensation> sensitivity_bubbles_;
+  SparseMatrix sensitivity_matrix_;
+  LuSolver sensitivity_solver_;
 };
 
 }  // namespace pfem

@@ -16,13 +16,26 @@ struct NodeState {
   std::vector<double> p;       // pressures [Pa]
   std::vector<double> rz, wz;  // rotation [rad] and its rate [rad/s] (structure nodes only)
   std::vector<mesh::NodeKind> kind;
+  // DDM: per node and parameter, the sensitivities of the fields below (empty without DDM).
+  enum Sensitivity { kDx, kDy, kDvx, kDvy, kDp, kDrz, kDwz, kSensitivityFields };
+  int num_params = 0;
+  std::vector<double> sens;  // sens[(node * num_params + k) * kSensitivityFields + field]
 
   std::size_t size() const { return x.size(); }
   int add(double px, double py, mesh::NodeKind k, double pvx = 0.0, double pvy = 0.0) {
     x0.push_back(px), y0.push_back(py), x.push_back(px), y.push_back(py);
     vx.push_back(pvx), vy.push_back(pvy), p.push_back(0.0), kind.push_back(k);
     rz.push_back(0.0), wz.push_back(0.0);
+    sens.resize(sens.size() + num_params * kSensitivityFields, 0.0);
     return static_cast<int>(x.size()) - 1;
+  }
+  void set_num_params(int count) {
+    num_params = count;
+    sens.assign(size() * count * kSensitivityFields, 0.0);
+  }
+  double* sensitivity(std::size_t node, int k) { return &sens[(node * num_params + k) * kSensitivityFields]; }
+  const double* sensitivity(std::size_t node, int k) const {
+    return &sens[(node * num_params + k) * kSensitivityFields];
   }
   // Walls and removed particles never move.
   bool is_fixed(std::size_t i) const {

@@ -39,6 +39,7 @@ BeamColumn2d::BeamColumn2d(const BeamColumn2d& other)
       nodes_(other.nodes_),
       options_(other.options_),
       transf_(other.transf_->clone()),
+      section_area_(other.section_area_),
       mass_per_length_(other.mass_per_length_),
       committed_u_(other.committed_u_),
       q_(other.q_),
@@ -47,9 +48,11 @@ BeamColumn2d::BeamColumn2d(const BeamColumn2d& other)
       tangent_(other.tangent_),
       initial_stiffness_(other.initial_stiffness_),
       mass_(other.mass_),
-      trial_u_(other.trial_u_) {}
+      trial_u_(other.trial_u_),
+      basic_force_sens_(other.basic_force_sens_) {}
 
 void BeamColumn2d::initialize(double section_area) {
+  section_area_ = section_area;
   mass_per_length_ = options_.rho * section_area;
   mass_ = beam_mass_matrix(mass_per_length_, *transf_, options_.mass);
   const Mat36 B0 = transf_->reference_basic_matrix();
@@ -73,6 +76,29 @@ void BeamColumn2d::commit() {
 void BeamColumn2d::revert_to_last_commit() {
   revert_basic();
   set_trial_displacement(committed_u_);
+}
+
+void BeamColumn2d::set_num_parameters(int P) { basic_force_sens_.assign(P, Vec3::Zero()); }
+
+Vec6 BeamColumn2d::conditional_force_sensitivity(int k) const {
+  return transf_->global_force(conditional_basic_force_sensitivity(k));
+}
+
+Mat6 BeamColumn2d::mass_sensitivity(int k) const {
+  const double dm =
+      options_.rho_seeds[k] * section_area_ + options_.rho * section_area_sensitivity(k);
+  return beam_mass_matrix(dm, *transf_, options_.mass);  // M is linear in m
+}
+
+Mat6 BeamColumn2d::initial_stiffness_sensitivity(int k) const {
+  const Mat36 B0 = transf_->reference_basic_matrix();
+  return B0.transpose() * initial_basic_stiffness_sensitivity(k) * B0;
+}
+
+void BeamColumn2d::set_displacement_sensitivity(int k, const Vec6& du) {
+  const Vec3 dv = transf_->basic_matrix() * du;
+  basic_force_sens_.at(k) = kb_ * dv + conditional_basic_force_sensitivity(k);
+  set_basic_deformation_sensitivity(k, dv);
 }
 
 }  // namespace pfem::structure

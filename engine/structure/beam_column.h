@@ -7,11 +7,17 @@
 // rotations. Consistent: linear axial + cubic Hermitian transverse shape functions, built
 // once in the reference orientation and kept constant (no dM/du term), which is exact for
 // the Linear transformation and an approximation for large corotational rotations.
+//
+// DDM: the transformation does not depend on any parameter, so the conditional force
+// derivative is B(u)^T dq/dtheta|v and the total basic deformation sensitivity dv = B(u) du.
+// dm/dtheta = drho A + rho dA with the seed of rho in BeamOptions and dA from the section.
 #include <array>
 #include <memory>
+#include <vector>
 
 #include "engine/structure/crd_transf.h"
 #include "engine/structure/element.h"
+#include "engine/structure/seeds.h"
 
 namespace pfem::structure {
 
@@ -21,6 +27,7 @@ struct BeamOptions {
   TransfKind transf = TransfKind::kLinear;
   MassKind mass = MassKind::kLumped;
   double rho = 0.0;  // mass density rho_s (>= 0, field "rho"); mass per length rho * A
+  Seeds<double> rho_seeds;  // DDM: drho/dtheta_k
 };
 
 // Global 6x6 mass matrix of a straight beam with mass per unit length m (reference geometry).
@@ -37,6 +44,14 @@ class BeamColumn2d : public Element {
   bool has_lumped_mass() const override { return options_.mass == MassKind::kLumped; }
   void commit() override;
   void revert_to_last_commit() override;
+
+  void set_num_parameters(int P) override;
+  Vec6 conditional_force_sensitivity(int k) const override;
+  Mat6 mass_sensitivity(int k) const override;
+  Mat6 initial_stiffness_sensitivity(int k) const override;
+  void set_displacement_sensitivity(int k, const Vec6& du) override;
+  // Total dq/dtheta_k from the last set_displacement_sensitivity(k, .) (for recorders).
+  const Vec3& basic_force_sensitivity(int k) const { return basic_force_sens_.at(k); }
 
   const CrdTransf2d& transformation() const { return *transf_; }
   const Vec3& basic_deformation() const { return transf_->basic_deformation(); }
@@ -58,6 +73,12 @@ class BeamColumn2d : public Element {
   virtual Mat3 initial_basic_stiffness() const = 0;
   virtual void commit_basic() = 0;
   virtual void revert_basic() = 0;
+  // DDM of the basic system: dq/dtheta_k at fixed v, dkb0/dtheta_k, dA/dtheta_k, and the total
+  // dv/dtheta_k at the converged trial state (sets the sections' history sensitivities).
+  virtual Vec3 conditional_basic_force_sensitivity(int k) const = 0;
+  virtual Mat3 initial_basic_stiffness_sensitivity(int k) const = 0;
+  virtual double section_area_sensitivity(int k) const = 0;
+  virtual void set_basic_deformation_sensitivity(int k, const Vec3& dv) = 0;
 
   double length() const { return transf_->initial_length(); }
 
@@ -65,6 +86,7 @@ class BeamColumn2d : public Element {
   std::array<int, 2> nodes_;
   BeamOptions options_;
   std::unique_ptr<CrdTransf2d> transf_;
+  double section_area_ = 0.0;
   double mass_per_length_ = 0.0;
   Vec6 committed_u_ = Vec6::Zero();
   Vec3 q_ = Vec3::Zero();
@@ -74,6 +96,7 @@ class BeamColumn2d : public Element {
   Mat6 initial_stiffness_ = Mat6::Zero();
   Mat6 mass_ = Mat6::Zero();
   Vec6 trial_u_ = Vec6::Zero();
+  std::vector<Vec3> basic_force_sens_;  // per parameter
 };
 
 }  // namespace pfem::structure

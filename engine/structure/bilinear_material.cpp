@@ -6,10 +6,14 @@
 
 namespace pfem::structure {
 
+namespace {
+double plastic_modulus(const BilinearParameters& p) { return p.b * p.e0 / (1.0 - p.b); }
+}  // namespace
+
 BilinearResponse bilinear_return_map(const BilinearParameters& p, const BilinearHistory& committed,
                                      double strain) {
   const double E = p.e0;
-  const double H = p.b * E / (1.0 - p.b);
+  const double H = plastic_modulus(p);
   BilinearResponse r;
   const double trial_stress = E * (strain - committed.plastic_strain);
   const double xi = trial_stress - committed.back_stress;
@@ -30,6 +34,31 @@ BilinearResponse bilinear_return_map(const BilinearParameters& p, const Bilinear
   return r;
 }
 
+BilinearSensitivity bilinear_return_map_sensitivity(const BilinearParameters& p,
+                                                    const BilinearParameters& dp,
+                                                    const BilinearHistory& committed,
+                                                    const BilinearHistory& dcommitted,
+                                                    double strain, double dstrain) {
+  const double E = p.e0, dE = dp.e0;
+  const double H = plastic_modulus(p);
+  const double dH = (p.b * dE + E * dp.b / (1.0 - p.b)) / (1.0 - p.b);
+  const double trial_stress = E * (strain - committed.plastic_strain);
+  const double dtrial_stress =
+      dE * (strain - committed.plastic_strain) + E * (dstrain - dcommitted.plastic_strain);
+  const double xi = trial_stress - committed.back_stress;
+  const double f = std::abs(xi) - p.fy;
+  BilinearSensitivity d{dtrial_stress, dcommitted};
+  if (f <= 0.0) return d;  // elastic: the history does not move
+  const double sign = xi > 0.0 ? 1.0 : -1.0;
+  const double dgamma = f / (E + H);
+  const double df = sign * (dtrial_stress - dcommitted.back_stress) - dp.fy;
+  const double d_dgamma = (df - dgamma * (dE + dH)) / (E + H);
+  d.stress -= (dE * dgamma + E * d_dgamma) * sign;
+  d.history.plastic_strain += d_dgamma * sign;
+  d.history.back_stress += (dH * dgamma + H * d_dgamma) * sign;
+  return d;
+}
+
 BilinearMaterial::BilinearMaterial(double fy, double e0, double b) : params_{fy, e0, b} {
   require_positive(fy, "fy");
   require_positive(e0, "e0");
@@ -46,9 +75,32 @@ void BilinearMaterial::set_trial_strain(double strain) {
 void BilinearMaterial::commit() {
   committed_ = trial_.history;
   committed_strain_ = strain_;
+  committed_sens_ = trial_sens_;
 }
 
-void BilinearMaterial::revert_to_last_commit() { set_trial_strain(committed_strain_); }
+void BilinearMaterial::revert_to_last_commit() {
+  set_trial_strain(committed_strain_);
+  trial_sens_ = committed_sens_;
+}
+
+void BilinearMaterial::set_num_parameters(int P) {
+  UniaxialMaterial::set_num_parameters(P);
+  committed_sens_.assign(P, BilinearHistory{});
+  trial_sens_ = committed_sens_;
+}
+
+BilinearSensitivity BilinearMaterial::sensitivity(int k, double dstrain) const {
+  return bilinear_return_map_sensitivity(params_, seeds_[k], committed_, committed_sens_.at(k),
+                                         strain_, dstrain);
+}
+
+double BilinearMaterial::conditional_stress_sensitivity(int k) const {
+  return sensitivity(k, 0.0).stress;
+}
+
+void BilinearMaterial::update_history_sensitivity(int k, double dstrain) {
+  trial_sens_.at(k) = sensitivity(k, dstrain).history;
+}
 
 std::unique_ptr<UniaxialMaterial> BilinearMaterial::clone() const {
   return std::make_unique<BilinearMaterial>(*this);

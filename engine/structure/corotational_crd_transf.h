@@ -21,6 +21,7 @@ class CorotationalCrdTransf2d final : public CrdTransf2d {
   // Throws std::runtime_error if the chord collapses to zero length.
   void update(const Vec6& u) override;
   const Vec3& basic_deformation() const override { return v_; }
+  const Mat36& basic_matrix() const override { return B_; }
   Vec6 global_force(const Vec3& q) const override;
   Mat6 global_stiffness(const Mat3& kb, const Vec3& q) const override;
   std::unique_ptr<CrdTransf2d> clone() const override;

@@ -26,6 +26,8 @@ class CrdTransf2d {
   // Sets the trial global end displacements (uxi, uyi, rzi, uxj, uyj, rzj).
   virtual void update(const Vec6& u) = 0;
   virtual const Vec3& basic_deformation() const = 0;
+  // B = dv/du at the trial displacement (the DDM maps du/dtheta to dv/dtheta with it).
+  virtual const Mat36& basic_matrix() const = 0;
   virtual Vec6 global_force(const Vec3& q) const = 0;
   virtual Mat6 global_stiffness(const Mat3& kb, const Vec3& q) const = 0;
   virtual std::unique_ptr<CrdTransf2d> clone() const = 0;

@@ -70,6 +70,36 @@ void DispBeamColumn2d::revert_basic() {
   for (auto& s : sections_) s->revert_to_last_commit();
 }
 
+void DispBeamColumn2d::set_num_parameters(int P) {
+  BeamColumn2d::set_num_parameters(P);
+  for (auto& s : sections_) s->set_num_parameters(P);
+}
+
+Vec3 DispBeamColumn2d::conditional_basic_force_sensitivity(int k) const {
+  Vec3 dq = Vec3::Zero();
+  for (std::size_t i = 0; i < sections_.size(); ++i) {
+    const Eigen::Matrix<double, 2, 3> b = strain_displacement(static_cast<int>(i));
+    dq.noalias() += length() * rule_.weights[i] *
+                    (b.transpose() * sections_[i]->conditional_resultant_sensitivity(k));
+  }
+  return dq;
+}
+
+Mat3 DispBeamColumn2d::initial_basic_stiffness_sensitivity(int k) const {
+  Mat3 dkb = Mat3::Zero();
+  for (std::size_t i = 0; i < sections_.size(); ++i) {
+    const Eigen::Matrix<double, 2, 3> b = strain_displacement(static_cast<int>(i));
+    dkb.noalias() += length() * rule_.weights[i] *
+                     (b.transpose() * sections_[i]->initial_tangent_sensitivity(k) * b);
+  }
+  return dkb;
+}
+
+void DispBeamColumn2d::set_basic_deformation_sensitivity(int k, const Vec3& dv) {
+  for (std::size_t i = 0; i < sections_.size(); ++i)
+    sections_[i]->set_deformation_sensitivity(k, strain_displacement(static_cast<int>(i)) * dv);
+}
+
 std::unique_ptr<Element> DispBeamColumn2d::clone() const {
   return std::unique_ptr<Element>(new DispBeamColumn2d(*this));
 }

@@ -23,6 +23,7 @@ class DispBeamColumn2d final : public BeamColumn2d {
                    const BeamOptions& options = {}, int integration_points = 2);
 
   std::unique_ptr<Element> clone() const override;
+  void set_num_parameters(int P) override;
 
   int num_integration_points() const { return static_cast<int>(sections_.size()); }
   const Section& section(int k) const { return *sections_[k]; }
@@ -34,6 +35,10 @@ class DispBeamColumn2d final : public BeamColumn2d {
   Mat3 initial_basic_stiffness() const override;
   void commit_basic() override;
   void revert_basic() override;
+  Vec3 conditional_basic_force_sensitivity(int k) const override;
+  Mat3 initial_basic_stiffness_sensitivity(int k) const override;
+  double section_area_sensitivity(int k) const override { return sections_[0]->area_sensitivity(k); }
+  void set_basic_deformation_sensitivity(int k, const Vec3& dv) override;
 
  private:
   // Section deformations at point k: e = b_k v, b_k 2x3.

@@ -1,5 +1,6 @@
 #pragma once
-// Linear elastic uniaxial material: stress = E * strain.
+// Linear elastic uniaxial material: stress = E * strain. DDM seed: dE/dtheta_k.
+#include "engine/structure/seeds.h"
 #include "engine/structure/uniaxial_material.h"
 
 namespace pfem::structure {
@@ -21,10 +22,20 @@ class ElasticMaterial final : public UniaxialMaterial {
 
   double youngs_modulus() const { return E_; }
 
+  // --- DDM ---
+  void set_modulus_seed(int k, double dE) { seeds_.set(k, dE); }
+  double modulus_seed(int k) const { return seeds_[k]; }
+  double conditional_stress_sensitivity(int k) const override { return seeds_[k] * strain_; }
+  double initial_tangent_sensitivity(int k) const override { return seeds_[k]; }
+
+ protected:
+  void update_history_sensitivity(int, double) override {}  // no history
+
  private:
   double E_;
   double strain_ = 0.0;
   double committed_strain_ = 0.0;
+  Seeds<double> seeds_;
 };
 
 }  // namespace pfem::structure

@@ -20,6 +20,18 @@ void ElasticSection::set_trial_deformation(const Vec2& e) {
   s_ = k_ * e;
 }
 
+Vec2 rigidity_sensitivity(const ElasticSectionProperties& p, const ElasticSectionProperties& dp) {
+  return {dp.E * p.A + p.E * dp.A, dp.E * p.I + p.E * dp.I};
+}
+
+Vec2 ElasticSection::conditional_resultant_sensitivity(int k) const {
+  return rigidity_sensitivity(props_, seeds_[k]).cwiseProduct(e_);
+}
+
+Mat2 ElasticSection::initial_tangent_sensitivity(int k) const {
+  return rigidity_sensitivity(props_, seeds_[k]).asDiagonal();
+}
+
 std::unique_ptr<Section> ElasticSection::clone() const {
   return std::make_unique<ElasticSection>(*this);
 }

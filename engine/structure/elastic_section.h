@@ -1,6 +1,8 @@
 #pragma once
-// Linear elastic section: N = EA eps0, M = EI kappa.
+// Linear elastic section: N = EA eps0, M = EI kappa. DDM seeds: d(E, A, I)/dtheta_k, held
+// in an ElasticSectionProperties.
 #include "engine/structure/section.h"
+#include "engine/structure/seeds.h"
 
 namespace pfem::structure {
 
@@ -12,6 +14,9 @@ struct ElasticSectionProperties {
 
 // Throws std::invalid_argument when a property is not > 0.
 void validate(const ElasticSectionProperties& p);
+
+// d(EA, EI)/dtheta of properties p with seeds dp (product rule).
+Vec2 rigidity_sensitivity(const ElasticSectionProperties& p, const ElasticSectionProperties& dp);
 
 class ElasticSection final : public Section {
  public:
@@ -30,12 +35,21 @@ class ElasticSection final : public Section {
 
   const ElasticSectionProperties& properties() const { return props_; }
 
+  // --- DDM (no history: nothing to size or commit) ---
+  void set_property_seed(int k, const ElasticSectionProperties& d) { seeds_.set(k, d); }
+  void set_num_parameters(int) override {}
+  Vec2 conditional_resultant_sensitivity(int k) const override;
+  Mat2 initial_tangent_sensitivity(int k) const override;
+  double area_sensitivity(int k) const override { return seeds_[k].A; }
+  void set_deformation_sensitivity(int, const Vec2&) override {}
+
  private:
   ElasticSectionProperties props_;
   Mat2 k_;
   Vec2 e_ = Vec2::Zero();
   Vec2 s_ = Vec2::Zero();
   Vec2 committed_e_ = Vec2::Zero();
+  Seeds<ElasticSectionProperties> seeds_;
 };
 
 }  // namespace pfem::structure

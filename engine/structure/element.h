@@ -6,6 +6,10 @@
 // state), then read resisting_force() and tangent_stiffness() (the consistent tangent
 // d(force)/d(u)); commit() after convergence, revert_to_last_commit() to abandon a step.
 // mass_matrix() and initial_stiffness() are constant. No shared state between elements.
+//
+// DDM w.r.t. parameters theta_k, k = 0..P-1 (the protocol of uniaxial_material.h): the
+// conditional force derivative at the trial displacement, and after convergence
+// set_displacement_sensitivity() with the total du/dtheta_k, committed by commit().
 #include <array>
 #include <memory>
 
@@ -28,6 +32,15 @@ class Element {
   virtual void commit() = 0;
   virtual void revert_to_last_commit() = 0;
   virtual std::unique_ptr<Element> clone() const = 0;
+
+  // --- DDM ---
+  // Sizes the sensitivity storage (history sensitivities 0; seeds kept).
+  virtual void set_num_parameters(int P) = 0;
+  // d(resisting_force)/dtheta_k with the trial displacement held fixed.
+  virtual Vec6 conditional_force_sensitivity(int k) const = 0;
+  virtual Mat6 mass_sensitivity(int k) const = 0;               // dM/dtheta_k
+  virtual Mat6 initial_stiffness_sensitivity(int k) const = 0;  // dK0/dtheta_k
+  virtual void set_displacement_sensitivity(int k, const Vec6& du) = 0;
 };
 
 }  // namespace pfem::structure

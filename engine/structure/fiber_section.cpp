@@ -29,7 +29,8 @@ FiberSection::FiberSection(const FiberSection& other)
       e_(other.e_),
       committed_e_(other.committed_e_),
       s_(other.s_),
-      k_(other.k_) {
+      k_(other.k_),
+      seeds_(other.seeds_) {
   fibers_.reserve(other.fibers_.size());
   for (const auto& f : other.fibers_) fibers_.push_back(f->clone());
 }
@@ -78,6 +79,56 @@ void FiberSection::revert_to_last_commit() {
   for (auto& f : fibers_) f->revert_to_last_commit();
   e_ = committed_e_;
   update_resultants();
+}
+
+void FiberSection::set_num_parameters(int P) {
+  for (auto& f : fibers_) f->set_num_parameters(P);
+}
+
+double FiberSection::area_sensitivity(int k) const {
+  return seeds_[k].width * geometry_.depth + geometry_.width * seeds_[k].depth;
+}
+
+double FiberSection::fiber_area_sensitivity(int k) const {
+  return area_sensitivity(k) / num_fibers();
+}
+
+Vec2 FiberSection::conditional_resultant_sensitivity(int k) const {
+  const double dA = fiber_area_sensitivity(k);
+  const double rd = relative_depth_sensitivity(k);
+  Vec2 ds = Vec2::Zero();
+  for (std::size_t i = 0; i < fibers_.size(); ++i) {
+    const UniaxialMaterial& m = *fibers_[i];
+    const double y = y_[i], dy = y * rd;
+    const double dstress = m.tangent() * (-dy * e_(1)) + m.conditional_stress_sensitivity(k);
+    const double dforce = dstress * fiber_area_ + m.stress() * dA;
+    ds(0) += dforce;
+    ds(1) -= dforce * y + m.stress() * fiber_area_ * dy;
+  }
+  return ds;
+}
+
+Mat2 FiberSection::initial_tangent_sensitivity(int k) const {
+  const double dA = fiber_area_sensitivity(k);
+  const double rd = relative_depth_sensitivity(k);
+  Mat2 dk = Mat2::Zero();
+  for (std::size_t i = 0; i < fibers_.size(); ++i) {
+    const double y = y_[i], dy = y * rd;
+    const double stiff = fibers_[i]->initial_tangent() * fiber_area_;
+    const double dstiff = fibers_[i]->initial_tangent_sensitivity(k) * fiber_area_ +
+                          fibers_[i]->initial_tangent() * dA;
+    dk(0, 0) += dstiff;
+    dk(0, 1) -= dstiff * y + stiff * dy;
+    dk(1, 1) += dstiff * y * y + 2.0 * stiff * y * dy;
+  }
+  dk(1, 0) = dk(0, 1);
+  return dk;
+}
+
+void FiberSection::set_deformation_sensitivity(int k, const Vec2& de) {
+  const double rd = relative_depth_sensitivity(k);
+  for (std::size_t i = 0; i < fibers_.size(); ++i)
+    fibers_[i]->set_strain_sensitivity(k, de(0) - y_[i] * (rd * e_(1) + de(1)));
 }
 
 std::unique_ptr<Section> FiberSection::clone() const {

@@ -5,9 +5,14 @@
 // Discretisation error of the midpoint rule (exact for linear integrands):
 //   elastic  EI_n = E b d^3/12 (1 - 1/n^2),  EA_n = E b d (exact)
 //   plastic  Mp_n = Fy b d^2/4 for n even, Fy b d^2/4 (1 - 1/n^2) for n odd.
+//
+// DDM: the section's seeds are d(b, d)/dtheta_k; the material seeds live in the fibers (seed
+// the material before building the section). Fiber areas scale with b d and positions with
+// d, so at fixed (eps0, kappa) a depth parameter also moves every fiber strain eps0 - y kappa.
 #include <vector>
 
 #include "engine/structure/section.h"
+#include "engine/structure/seeds.h"
 #include "engine/structure/uniaxial_material.h"
 
 namespace pfem::structure {
@@ -16,6 +21,11 @@ struct FiberSectionGeometry {
   double width = 0.0;  // b, > 0
   double depth = 0.0;  // d, > 0
   int fibers = 0;      // n, >= 1
+};
+
+struct RectangleSeed {
+  double width = 0.0;  // db/dtheta
+  double depth = 0.0;  // dd/dtheta
 };
 
 class FiberSection final : public Section {
@@ -41,8 +51,19 @@ class FiberSection final : public Section {
   double fiber_y(int k) const { return y_[k]; }
   const UniaxialMaterial& fiber_material(int k) const { return *fibers_[k]; }
 
+  // --- DDM ---
+  void set_geometry_seed(int k, const RectangleSeed& d) { seeds_.set(k, d); }
+  void set_num_parameters(int P) override;
+  Vec2 conditional_resultant_sensitivity(int k) const override;
+  Mat2 initial_tangent_sensitivity(int k) const override;
+  double area_sensitivity(int k) const override;
+  void set_deformation_sensitivity(int k, const Vec2& de) override;
+
  private:
   void update_resultants();
+  // Fiber k's area and position sensitivities: dA (the same for all) and dy_k = y_k dd / d.
+  double fiber_area_sensitivity(int k) const;
+  double relative_depth_sensitivity(int k) const { return seeds_[k].depth / geometry_.depth; }
 
   FiberSectionGeometry geometry_;
   double fiber_area_ = 0.0;
@@ -52,6 +73,7 @@ class FiberSection final : public Section {
   Vec2 committed_e_ = Vec2::Zero();
   Vec2 s_ = Vec2::Zero();
   Mat2 k_ = Mat2::Zero();
+  Seeds<RectangleSeed> seeds_;
 };
 
 }  // namespace pfem::structure

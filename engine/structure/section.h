@@ -1,7 +1,8 @@
 #pragma once
 // A beam cross-section: section deformations e = (eps0, kappa) -> resultants s = (N, M).
 // Sign convention (as OpenSees): fiber strain eps(y) = eps0 - y*kappa, M = -sum sigma*y*A,
-// so that M = EI*kappa for an elastic section. Same trial/commit protocol as the materials.
+// so that M = EI*kappa for an elastic section. Same trial/commit protocol as the materials,
+// and the same DDM protocol (uniaxial_material.h) with section deformations for strains.
 #include <memory>
 
 #include "engine/structure/types.h"
@@ -22,6 +23,16 @@ class Section {
   virtual void commit() = 0;
   virtual void revert_to_last_commit() = 0;
   virtual std::unique_ptr<Section> clone() const = 0;
+
+  // --- DDM, parameters k = 0..P-1 ---
+  // Sizes the sensitivity storage (history sensitivities 0; seeds kept).
+  virtual void set_num_parameters(int P) = 0;
+  // d(N, M)/dtheta_k with the trial deformation held fixed (committed history sensitivities).
+  virtual Vec2 conditional_resultant_sensitivity(int k) const = 0;
+  virtual Mat2 initial_tangent_sensitivity(int k) const = 0;
+  virtual double area_sensitivity(int k) const = 0;
+  // At the converged trial state, the total d(eps0, kappa)/dtheta_k: trial history sensitivities.
+  virtual void set_deformation_sensitivity(int k, const Vec2& de) = 0;
 };
 
 }  // namespace pfem::structure

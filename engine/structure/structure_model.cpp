@@ -26,6 +26,7 @@ void scatter_matrix(const std::array<int, 2>& nodes, const Mat6& k, double facto
 StructureModel::StructureModel(const StructureModel& other)
     : nodes_(other.nodes_),
       damping_(other.damping_),
+      num_parameters_(other.num_parameters_),
       u_trial_(other.u_trial_),
       u_committed_(other.u_committed_) {
   elements_.reserve(other.elements_.size());
@@ -76,16 +77,18 @@ void StructureModel::set_nodal_load(int node, double fx, double fy, double mz) {
 int StructureModel::add_element(std::unique_ptr<Element> element) {
   if (!element) throw_invalid("element", "must not be null");
   for (int n : element->nodes()) check_node(n, "nodes");
+  element->set_num_parameters(num_parameters_);
   elements_.push_back(std::move(element));
   return num_elements() - 1;
 }
 
 int StructureModel::add_elastic_beam(int i, int j, const ElasticSectionProperties& section,
-                                     const BeamOptions& options) {
+                                     const BeamOptions& options,
+                                     const Seeds<ElasticSectionProperties>& section_seeds) {
   check_node(i, "nodes");
   check_node(j, "nodes");
-  return add_element(std::make_unique<ElasticBeamColumn2d>(std::array<int, 2>{i, j}, nodes_[i].x,
-                                                           nodes_[j].x, section, options));
+  return add_element(std::make_unique<ElasticBeamColumn2d>(
+      std::array<int, 2>{i, j}, nodes_[i].x, nodes_[j].x, section, options, section_seeds));
 }
 
 int StructureModel::add_disp_beam(int i, int j, const Section& section, const BeamOptions& options,
@@ -109,10 +112,31 @@ Vec6 StructureModel::gather(const Eigen::VectorXd& u, const Element& e) const {
   return ue;
 }
 
-void StructureModel::set_trial_displacement(const Eigen::VectorXd& u) {
-  if (u.size() != num_dofs())
-    throw std::invalid_argument("displacement vector has " + std::to_string(u.size()) +
+template <typename F>
+void StructureModel::add_element_vectors(const Eigen::VectorXd& x, F&& f,
+                                         Eigen::VectorXd& out) const {
+  for (const auto& e : elements_) {
+    const auto n = e->nodes();
+    const Vec6 y = f(*e, gather(x, *e));
+    out.segment<3>(kDofsPerNode * n[0]) += y.head<3>();
+    out.segment<3>(kDofsPerNode * n[1]) += y.tail<3>();
+  }
+}
+
+void StructureModel::check_vector(const Eigen::VectorXd& x, const char* what) const {
+  if (x.size() != num_dofs())
+    throw std::invalid_argument(std::string(what) + " vector has " + std::to_string(x.size()) +
                                 " entries, the model " + std::to_string(num_dofs()) + " dofs");
+}
+
+void StructureModel::check_parameter(int k) const {
+  if (k < 0 || k >= num_parameters_)
+    throw std::out_of_range("parameter " + std::to_string(k) + " of " +
+                            std::to_string(num_parameters_));
+}
+
+void StructureModel::set_trial_displacement(const Eigen::VectorXd& u) {
+  check_vector(u, "displacement");
   u_trial_ = u;
   for (auto& e : elements_) e->set_trial_displacement(gather(u, *e));
 }
@@ -129,12 +153,7 @@ void StructureModel::revert_to_last_commit() {
 
 Eigen::VectorXd StructureModel::resisting_force() const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(num_dofs());
-  for (const auto& e : elements_) {
-    const auto n = e->nodes();
-    const Vec6& fe = e->resisting_force();
-    f.segment<3>(kDofsPerNode * n[0]) += fe.head<3>();
-    f.segment<3>(kDofsPerNode * n[1]) += fe.tail<3>();
-  }
+  add_element_vectors(u_trial_, [](const Element& e, const Vec6&) { return e.resisting_force(); }, f);
   return f;
 }
 
@@ -163,12 +182,8 @@ void StructureModel::add_damping(const AddEntry& add, double factor) const {
 
 Eigen::VectorXd StructureModel::mass_times(const Eigen::VectorXd& a) const {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(num_dofs());
-  for (const auto& e : elements_) {
-    const auto n = e->nodes();
-    const Vec6 y = e->mass_matrix() * gather(a, *e);
-    out.segment<3>(kDofsPerNode * n[0]) += y.head<3>();
-    out.segment<3>(kDofsPerNode * n[1]) += y.tail<3>();
-  }
+  add_element_vectors(a, [](const Element& e, const Vec6& ae) -> Vec6 { return e.mass_matrix() * ae; },
+                      out);
   for (int n = 0; n < num_nodes(); ++n)
     out.segment<3>(kDofsPerNode * n) += nodes_[n].mass.cwiseProduct(a.segment<3>(kDofsPerNode * n));
   return out;
@@ -178,12 +193,10 @@ Eigen::VectorXd StructureModel::damping_times(const Eigen::VectorXd& v) const {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(num_dofs());
   if (damping_.a0 != 0.0) out += damping_.a0 * mass_times(v);
   if (damping_.a1 != 0.0) {
-    for (const auto& e : elements_) {
-      const auto n = e->nodes();
-      const Vec6 y = damping_.a1 * (e->initial_stiffness() * gather(v, *e));
-      out.segment<3>(kDofsPerNode * n[0]) += y.head<3>();
-      out.segment<3>(kDofsPerNode * n[1]) += y.tail<3>();
-    }
+    const double a1 = damping_.a1;
+    add_element_vectors(
+        v, [a1](const Element& e, const Vec6& ve) -> Vec6 { return a1 * (e.initial_stiffness() * ve); },
+        out);
   }
   return out;
 }
@@ -207,6 +220,49 @@ Eigen::VectorXd StructureModel::external_load() const {
   Eigen::VectorXd f(num_dofs());
   for (int n = 0; n < num_nodes(); ++n) f.segment<3>(kDofsPerNode * n) = nodes_[n].load;
   return f;
+}
+
+void StructureModel::set_num_parameters(int P) {
+  if (P < 0) throw_invalid("parameters", "the number must be >= 0 (got " + std::to_string(P) + ")");
+  num_parameters_ = P;
+  for (auto& e : elements_) e->set_num_parameters(P);
+}
+
+Eigen::VectorXd StructureModel::resisting_force_sensitivity(int k) const {
+  check_parameter(k);
+  Eigen::VectorXd df = Eigen::VectorXd::Zero(num_dofs());
+  add_element_vectors(
+      u_trial_, [k](const Element& e, const Vec6&) { return e.conditional_force_sensitivity(k); }, df);
+  return df;
+}
+
+Eigen::VectorXd StructureModel::mass_sensitivity_times(int k, const Eigen::VectorXd& a) const {
+  check_parameter(k);
+  check_vector(a, "acceleration");
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(num_dofs());
+  add_element_vectors(
+      a, [k](const Element& e, const Vec6& ae) -> Vec6 { return e.mass_sensitivity(k) * ae; }, out);
+  return out;
+}
+
+Eigen::VectorXd StructureModel::damping_sensitivity_times(int k, const Eigen::VectorXd& v) const {
+  check_parameter(k);
+  check_vector(v, "velocity");
+  const double a0 = damping_.a0, a1 = damping_.a1;
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(num_dofs());
+  add_element_vectors(
+      v,
+      [=](const Element& e, const Vec6& ve) -> Vec6 {
+        return (a0 * e.mass_sensitivity(k) + a1 * e.initial_stiffness_sensitivity(k)) * ve;
+      },
+      out);
+  return out;
+}
+
+void StructureModel::set_displacement_sensitivity(int k, const Eigen::VectorXd& du) {
+  check_parameter(k);
+  check_vector(du, "displacement sensitivity");
+  for (auto& e : elements_) e->set_displacement_sensitivity(k, gather(du, *e));
 }
 
 }  // namespace pfem::structure

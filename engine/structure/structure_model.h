@@ -13,6 +13,13 @@
 // the velocity-based residual r = F_ext - M (v - v_n)/dt - C v - Fs_int(u) has the exact
 // tangent M/dt + C + dt dFs/du.
 //
+// Direct differentiation (DDM) w.r.t. parameters theta_k, k = 0..P-1, whose seeds the
+// elements, sections and materials hold (set before they are added; see seeds.h). Per step,
+// after convergence: resisting_force_sensitivity(), mass_sensitivity_times() and
+// damping_sensitivity_times() enter the right-hand side of the sensitivity equations; the
+// solved du/dtheta_k goes to set_displacement_sensitivity(), then commit() commits the
+// history sensitivities with the state. Nodal masses and loads are not parameters.
+//
 // Ownership: the model owns its elements. Thread-safety: one model per job; no shared state.
 // Supports are reported by is_fixed(); the model does not eliminate them (the caller does).
 #include <Eigen/Core>
@@ -50,7 +57,8 @@ class StructureModel {
   int add_element(std::unique_ptr<Element> element);
   // Conveniences that look the reference coordinates up from the nodes.
   int add_elastic_beam(int i, int j, const ElasticSectionProperties& section,
-                       const BeamOptions& options = {});
+                       const BeamOptions& options = {},
+                       const Seeds<ElasticSectionProperties>& section_seeds = {});
   int add_disp_beam(int i, int j, const Section& section, const BeamOptions& options = {},
                     int integration_points = 2);
   void set_rayleigh(const RayleighDamping& damping);
@@ -85,13 +93,32 @@ class StructureModel {
   Eigen::VectorXd lumped_mass() const;  // the diagonal of M; throws std::logic_error if not lumped
   Eigen::VectorXd external_load() const;
 
+  // --- DDM ---
+  // Sizes every object's sensitivity storage for P parameters (history sensitivities 0).
+  void set_num_parameters(int P);
+  int num_parameters() const { return num_parameters_; }
+  // dFs_int/dtheta_k at the trial displacement held fixed, with the committed history
+  // sensitivities (size num_dofs()).
+  Eigen::VectorXd resisting_force_sensitivity(int k) const;
+  Eigen::VectorXd mass_sensitivity_times(int k, const Eigen::VectorXd& a) const;     // dM a
+  Eigen::VectorXd damping_sensitivity_times(int k, const Eigen::VectorXd& v) const;  // dC v
+  // At the converged trial state, the total du/dtheta_k of every dof: the trial history
+  // sensitivities (and the recorders' totals). commit() commits them, revert drops them.
+  void set_displacement_sensitivity(int k, const Eigen::VectorXd& du);
+
  private:
   Vec6 gather(const Eigen::VectorXd& u, const Element& e) const;
+  // out += the element vectors f(element, element part of x), scattered to global dofs.
+  template <typename F>
+  void add_element_vectors(const Eigen::VectorXd& x, F&& f, Eigen::VectorXd& out) const;
+  void check_vector(const Eigen::VectorXd& x, const char* what) const;
+  void check_parameter(int k) const;
   void check_node(int n, const char* what) const;
 
   std::vector<Node> nodes_;
   std::vector<std::unique_ptr<Element>> elements_;
   RayleighDamping damping_;
+  int num_parameters_ = 0;
   Eigen::VectorXd u_trial_;
   Eigen::VectorXd u_committed_;
 };

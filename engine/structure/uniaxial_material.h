@@ -6,7 +6,14 @@
 // once the step has converged; revert_to_last_commit() to abandon the trial state.
 // Objects are not shared: every fiber owns its clone. Not thread-safe per object; distinct
 // objects are independent (no static state).
+//
+// Direct differentiation (DDM) w.r.t. parameters theta_k, k = 0..P-1, whose seeds the
+// derived class holds (see seeds.h). In a step: after convergence, the caller obtains the
+// total strain sensitivity from conditional_stress_sensitivity() (through the element and
+// the global solve), passes it to set_strain_sensitivity(), then calls commit(), which
+// commits the history sensitivities together with the state.
 #include <memory>
+#include <vector>
 
 namespace pfem::structure {
 
@@ -25,6 +32,34 @@ class UniaxialMaterial {
   virtual void commit() = 0;
   virtual void revert_to_last_commit() = 0;
   virtual std::unique_ptr<UniaxialMaterial> clone() const = 0;
+
+  // --- DDM ---
+  // Sizes the sensitivity storage for P parameters; history sensitivities restart at 0.
+  // Seeds are kept.
+  virtual void set_num_parameters(int P);
+  int num_parameters() const { return static_cast<int>(total_.size()); }
+  // d(stress)/d(theta_k) with the trial strain held fixed: the trial state's return from the
+  // committed history, differentiated with the committed history sensitivities.
+  virtual double conditional_stress_sensitivity(int k) const = 0;
+  virtual double initial_tangent_sensitivity(int k) const = 0;
+  // At the converged trial state, the total d(strain)/d(theta_k): computes the trial history
+  // sensitivities (committed by commit(), dropped by revert_to_last_commit()) and the total
+  // stress sensitivity tangent() * dstrain + conditional_stress_sensitivity(k).
+  void set_strain_sensitivity(int k, double dstrain);
+  // Totals of the last set_strain_sensitivity(k, .) (for recorders).
+  double strain_sensitivity(int k) const { return total_.at(k).strain; }
+  double stress_sensitivity(int k) const { return total_.at(k).stress; }
+
+ protected:
+  // The trial history sensitivities for the total strain sensitivity dstrain.
+  virtual void update_history_sensitivity(int k, double dstrain) = 0;
+
+ private:
+  struct Total {
+    double strain = 0.0;
+    double stress = 0.0;
+  };
+  std::vector<Total> total_;
 };
 
 }  // namespace pfem::structure

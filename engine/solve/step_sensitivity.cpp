@@ -1,0 +1,134 @@
+// The DDM of one converged PFEM step (theory §5, eqs. (38)-(46)).
+//
+// Differentiating the converged residual r(v, p; x = x_n + dt v, v_n, p_n, theta) = 0 gives
+//   -(dr/dv + dt dr/dx) dv - dr/dp dp = dr/dx dx_n + dr/dv_n dv_n + dr/dp_n dp_n + dr/dtheta|
+// The matrix is the exact Jacobian of the step (H and T through dr/dx, the structure's
+// consistent tangent) and does not depend on the parameter: one UMFPACK factorisation, one
+// multi-column back-substitution. The bubble is condensed per element exactly as in the
+// response, and its sensitivity is carried from step to step by triangle like its velocity.
+#include <chrono>
+#include <stdexcept>
+
+#include "engine/solve/fluid_step.h"
+
+namespace pfem {
+
+void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
+  const int num_params = static_cast<int>(s.sensitivity.size());
+  const int ne = static_cast<int>(mesh.triangles.size());
+  const double inv_dt = 1.0 / s.dt;
+  std::vector<fluid::GeometricDerivatives> geometric(ne);
+  Eigen::MatrixXd rv = Eigen::MatrixXd::Zero(n_v_, num_params), rp = Eigen::MatrixXd::Zero(n_p_, num_params);
+  Eigen::Matrix<double, 6, 1> dxn;
+  fluid::Vec8 dvn;
+  fluid::Vec3 dpn;
+  for (int e = 0; e < ne; ++e) {
+    const auto& m = mats_[e];
+    const auto& tri = mesh.triangles[e];
+    const fluid::ElementState st = element_state(mesh, e);
+    auto& gd = geometric[e];
+    if (s.geometric_terms) {
+      fluid::geometric_derivatives(geometries_[e], m, s.fluid.mu, s.thickness, s.dt, st, gd);
+    } else {
+      gd.drv_dx.setZero();
+      gd.drp_dx.setZero();
+    }
+    const int bubble = n_node_v_ + 2 * e;
+    for (int k = 0; k < num_params; ++k) {
+      for (int a = 0; a < 3; ++a) {
+        const double* d = nodes.sensitivity(tri[a], k);
+        dxn(2 * a) = d[NodeState::kDx], dxn(2 * a + 1) = d[NodeState::kDy];
+        dvn(2 * a) = d[NodeState::kDvx], dvn(2 * a + 1) = d[NodeState::kDvy];
+        dpn(a) = d[NodeState::kDp];
+      }
+      dvn.tail<2>() = dvbn_[e].col(k);
+      fluid::Vec8 sv = gd.drv_dx * dxn + m.M * dvn * inv_dt;
+      fluid::Vec3 sp = gd.drp_dx * dxn + m.Mp.cwiseProduct(dpn) * inv_dt;
+      if (s.sensitivity[k].any()) {
+        const fluid::ElementResidual c =
+            fluid::conditional_derivative(geometries_[e], m, s.fluid, s.thickness, s.dt, st, s.sensitivity[k]);
+        sv += c.rv;
+        sp += c.rp;
+      }
+      for (int a = 0; a < 3; ++a) {
+        const int i = tri[a], dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];
+        if (dx >= 0) rv(dx, k) += sv(2 * a);
+        if (dy >= 0) rv(dy, k) += sv(2 * a + 1);
+        if (q >= 0) rp(q, k) += sp(a);
+      }
+      rv(bubble, k) += sv(6), rv(bubble + 1, k) += sv(7);
+    }
+  }
+  for (int k = 0; s.structure.model && k < num_params; ++k) {
+    const Eigen::VectorXd r = structure_sensitivity_rhs(s, nodes, k);
+    for (std::size_t j = 0; j < s_dof_.size(); ++j)
+      if (s_dof_[j] >= 0) rv(s_dof_[j], k) += r[j];
+  }
+
+  std::vector<Eigen::Triplet<double>> t;
+  condensed_triplets(mesh, s, &geometric, sensitivity_bubbles_, t);
+  sensitivity_matrix_.resize(n_node_v_ + n_p_, n_node_v_ + n_p_);
+  sensitivity_matrix_.setFromTriplets(t.begin(), t.end());
+  try {
+    sensitivity_solver_.analyze(sensitivity_matrix_);
+    sensitivity_solver_.factorize(sensitivity_matrix_);
+  } catch (const std::runtime_error& e) {
+    throw StepFailure(std::string("sensitivity matrix: ") + e.what());
+  }
+  solve_condensed(mesh, sensitivity_bubbles_,
+                  [this](const Eigen::MatrixXd& b) { return sensitivity_solver_.solve(b); }, rv, rp, dv_, dp_);
+  if (!dv_.allFinite() || !dp_.allFinite()) throw StepFailure("non-finite sensitivities");
+}
+
+// The structure's rows: r = F_ext - M (v - v_n)/dt - C v - Fs(u_n + dt v) differentiated,
+// -K_T du_n + M dv_n/dt - dM (v - v_n)/dt - dC v - dFs|u (loads hold no parameter).
+Eigen::VectorXd UnifiedStep::structure_sensitivity_rhs(const StepSettings& s, const NodeState& nodes, int k) const {
+  const auto* model = s.structure.model;
+  const auto& sn = s.structure.node;
+  const int n = model->num_dofs();
+  Eigen::VectorXd dun(n), dvn(n), v = Eigen::VectorXd::Zero(n);
+  for (std::size_t j = 0; j < sn.size(); ++j) {
+    const double* d = nodes.sensitivity(sn[j], k);
+    dun.segment<3>(3 * j) << d[NodeState::kDx], d[NodeState::kDy], d[NodeState::kDrz];
+    dvn.segment<3>(3 * j) << d[NodeState::kDvx], d[NodeState::kDvy], d[NodeState::kDwz];
+  }
+  for (int j = 0; j < n; ++j)
+    if (s_dof_[j] >= 0) v[j] = v_[s_dof_[j]];
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
+  model->add_tangent([&](int row, int col, double value) { r[row] -= value * dun[col]; });
+  r += model->mass_times(dvn) / s.dt - model->mass_sensitivity_times(k, (v - s_vn_) / s.dt) -
+       model->damping_sensitivity_times(k, v) - model->resisting_force_sensitivity(k);
+  return r;
+}
+
+void UnifiedStep::commit_sensitivities(const StepSettings& s, NodeState& nodes) {
+  const int num_params = static_cast<int>(s.sensitivity.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const int dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];
+    for (int k = 0; k < num_params; ++k) {
+      double* d = nodes.sensitivity(i, k);
+      d[NodeState::kDp] = q >= 0 ? dp_(q, k) : 0.0;
+      if (dx < 0 && dy < 0) continue;
+      d[NodeState::kDvx] = dx >= 0 ? dv_(dx, k) : 0.0;
+      d[NodeState::kDvy] = dy >= 0 ? dv_(dy, k) : 0.0;
+      d[NodeState::kDx] += s.dt * d[NodeState::kDvx];
+      d[NodeState::kDy] += s.dt * d[NodeState::kDvy];
+    }
+  }
+  auto* model = s.structure.model;
+  if (!model) return;
+  const auto& sn = s.structure.node;
+  Eigen::VectorXd du(model->num_dofs());
+  for (int k = 0; k < num_params; ++k) {
+    for (std::size_t j = 0; j < sn.size(); ++j) {
+      double* d = nodes.sensitivity(sn[j], k);
+      const int w = s_dof_[3 * j + 2];
+      d[NodeState::kDwz] = w >= 0 ? dv_(w, k) : 0.0;
+      d[NodeState::kDrz] += s.dt * d[NodeState::kDwz];
+      du.segment<3>(3 * j) << d[NodeState::kDx], d[NodeState::kDy], d[NodeState::kDrz];
+    }
+    model->set_displacement_sensitivity(k, du);
+  }
+}
+
+}  // namespace pfem
