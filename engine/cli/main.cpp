@@ -1,8 +1,11 @@
 // The `pfem` command: run and validate model files (design.md, "Contracts").
 //   pfem run MODEL.json --out DIR [--t-end T] [--dt DT] [--sensitivity none|ddm|fdm]
 //            [--params a,b] [--fdm-eps E] [--vtk-every N] [--vtk] [--threads N]
+//   pfem check-gradients MODEL.json [--params a,b] [--t-end T] [--dt DT] [--fdm-eps E]
+//            [--tolerance TOL] [--threads N]
 //   pfem validate MODEL.json
-// Exit codes: 0 success, 1 simulation failed or cancelled, 2 invalid input or usage.
+// Exit codes: 0 success, 1 simulation failed or cancelled (check-gradients: or a DDM column off
+// the FDM by more than the tolerance), 2 invalid input or usage.
 #include <unistd.h>
 
 #include <cstdio>
@@ -10,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/analysis/gradient_check.h"
 #include "engine/analysis/run.h"
 #include "engine/cli/arguments.h"
 #include "engine/io/model_io.h"
@@ -20,6 +24,8 @@ namespace {
 const char* kUsage =
     "usage: pfem run MODEL.json --out DIR [--t-end T] [--dt DT] [--sensitivity none|ddm|fdm]\n"
     "                [--params a,b] [--fdm-eps E] [--vtk] [--vtk-every N] [--threads N]\n"
+    "       pfem check-gradients MODEL.json [--params a,b] [--t-end T] [--dt DT] [--fdm-eps E]\n"
+    "                [--tolerance TOL] [--threads N]\n"
     "       pfem validate MODEL.json\n";
 
 int usage_error(const std::string& message) {
@@ -100,6 +106,55 @@ int run(const std::vector<std::string>& args) {
   }
 }
 
+// Runs DDM, DDM without H and T, and central FDM; prints one row per recorder and parameter.
+int check_gradients(const std::vector<std::string>& args) {
+  pfem::cli::Arguments a(args);
+  pfem::RunOptions options;
+  double tolerance = 1e-3;
+  try {
+    options.t_end = a.take_double("--t-end");
+    options.dt = a.take_double("--dt");
+    if (auto p = a.take_string("--params")) options.params = pfem::cli::split(*p, ',');
+    if (auto e = a.take_double("--fdm-eps")) options.fdm_eps = *e;
+    if (auto t = a.take_double("--tolerance")) tolerance = *t;
+    if (auto t = a.take_int("--threads")) options.threads = *t;
+    a.expect_done(1);
+  } catch (const std::invalid_argument& e) {
+    return usage_error(e.what());
+  }
+  try {
+    const auto model = pfem::read_model_file(a.positional(0));
+    const pfem::GradientCheck check = pfem::check_gradients(model, options, true);
+    for (const auto* s : {&check.ddm, &check.fdm}) {
+      if (s->status != pfem::RunStatus::kCompleted) {
+        std::cerr << "pfem: " << (s == &check.ddm ? "DDM" : "FDM") << " run stopped: " << s->message << "\n";
+        return 1;
+      }
+    }
+    std::printf("%s to t = %g s (%d steps): DDM %.1f s (response %.1f s + sensitivity %.1f s), central FDM "
+                "(eps %g) %.1f s\n",
+                a.positional(0).c_str(), check.ddm.t_end, check.ddm.steps, check.ddm.wall_seconds,
+                check.ddm.response_seconds, check.ddm.sensitivity_seconds, options.fdm_eps,
+                check.fdm.wall_seconds);
+    std::printf("max over time of |DDM - FDM| / max |FDM|\n");
+    std::printf("%-16s %-12s %12s %12s %14s\n", "recorder", "parameter", "max |FDM|", "DDM", "without H,T");
+    bool pass = true;
+    for (const auto& r : check.rows) {
+      std::printf("%-16s %-12s %12.4e %12.2e %14.2e\n", r.recorder.c_str(), r.parameter.c_str(), r.max_fdm, r.ddm,
+                  r.without_geometric);
+      pass = pass && r.ddm <= tolerance;
+    }
+    std::printf("DDM within %g of FDM: %s\n", tolerance, pass ? "yes" : "NO");
+    return pass ? 0 : 1;
+  } catch (const pfem::ModelError& e) {
+    for (const auto& err : e.errors()) std::cerr << err.to_string() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "pfem: " << e.what() << "\n";
+    return 1;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -108,6 +163,7 @@ int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 2, argv + argc);
   if (command == "run") return run(args);
   if (command == "validate") return validate(args);
+  if (command == "check-gradients") return check_gradients(args);
   if (command == "--help" || command == "-h") {
     std::cout << kUsage;
     return 0;

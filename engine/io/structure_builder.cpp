@@ -48,8 +48,8 @@ int find_named(const Items& items, const std::string& name) {
 
 // The seeds the sensitivity targets ask for, [parameter k][component index].
 struct SectionSeed {
-  structure::RectangleSeed rectangle;                  // fiber_rectangle: width, depth
-  structure::ElasticSectionProperties elastic{};       // elastic: e, area, inertia
+  structure::RectangleSeed rectangle;             // fiber_rectangle: width, depth
+  structure::ElasticSectionProperties elastic{};  // elastic: e, area, inertia
 };
 struct TargetSeeds {
   std::vector<std::vector<structure::BilinearParameters>> material;  // e0 holds E of an elastic one
@@ -57,14 +57,12 @@ struct TargetSeeds {
   std::vector<std::vector<double>> rho;  // per beam
 };
 
-TargetSeeds target_seeds(const pfem::v1::Model& model,
-                         const std::vector<std::vector<std::string>>& targets) {
+TargetSeeds target_seeds(const pfem::v1::Model& model, const std::vector<std::vector<std::string>>& targets) {
   const auto& st = model.structure();
   const int P = static_cast<int>(targets.size());
-  TargetSeeds seeds{
-      std::vector(P, std::vector<structure::BilinearParameters>(st.materials_size())),
-      std::vector(P, std::vector<SectionSeed>(st.sections_size())),
-      std::vector(P, std::vector<double>(st.beams_size(), 0.0))};
+  TargetSeeds seeds{std::vector(P, std::vector<structure::BilinearParameters>(st.materials_size())),
+                    std::vector(P, std::vector<SectionSeed>(st.sections_size())),
+                    std::vector(P, std::vector<double>(st.beams_size(), 0.0))};
   std::vector<FieldError> errors;
   for (int k = 0; k < P; ++k) {
     for (int j = 0; j < static_cast<int>(targets[k].size()); ++j) {
@@ -82,7 +80,7 @@ TargetSeeds target_seeds(const pfem::v1::Model& model,
         (p == "e" ? m.e0 : p == "fy" ? m.fy : m.b) += 1.0;
       } else if (ref.kind == "section") {
         auto& s = seeds.section[k][find_named(st.sections(), ref.name)];
-        (p == "width"  ? s.rectangle.width
+        (p == "width"   ? s.rectangle.width
          : p == "depth" ? s.rectangle.depth
          : p == "e"     ? s.elastic.E
          : p == "area"  ? s.elastic.A
@@ -96,8 +94,7 @@ TargetSeeds target_seeds(const pfem::v1::Model& model,
   return seeds;
 }
 
-void seed_material(structure::UniaxialMaterial& material, int k,
-                   const structure::BilinearParameters& d) {
+void seed_material(structure::UniaxialMaterial& material, int k, const structure::BilinearParameters& d) {
   if (auto* e = dynamic_cast<structure::ElasticMaterial*>(&material)) e->set_modulus_seed(k, d.e0);
   if (auto* b = dynamic_cast<structure::BilinearMaterial*>(&material)) b->set_parameter_seed(k, d);
 }
@@ -292,8 +289,8 @@ StructureBuild build_structure(const pfem::v1::Model& model,
           sections[i].elastic =
               structure::ElasticSectionProperties{e->youngs_modulus(), b * d, b * d * d * d / 12.0};
           for (int k = 0; k < P; ++k)
-            sections[i].elastic_seeds.set(k, rectangle_seed(b, d, seeds.material[k][m].e0,
-                                                            seeds.section[k][i].rectangle));
+            sections[i].elastic_seeds.set(
+                k, rectangle_seed(b, d, seeds.material[k][m].e0, seeds.section[k][i].rectangle));
         }
       }
     } catch (const std::invalid_argument& e) {

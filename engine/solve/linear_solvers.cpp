@@ -46,7 +46,11 @@ struct LuSolver::Impl {
   Eigen::UmfPackLU<SparseMatrix> lu;
 };
 
-LuSolver::LuSolver() : impl_(std::make_unique<Impl>()) {}
+LuSolver::LuSolver() : impl_(std::make_unique<Impl>()) {
+  // The fluid's matrices have a symmetric pattern and a strong diagonal: UMFPACK's symmetric
+  // strategy (AMD on A + A^T, diagonal pivots preferred) factorises them several times faster.
+  impl_->lu.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+}
 LuSolver::~LuSolver() = default;
 
 void LuSolver::analyze(const SparseMatrix& a) { impl_->lu.analyzePattern(a); }

@@ -26,7 +26,7 @@ enum class MassKind { kLumped, kConsistent };
 struct BeamOptions {
   TransfKind transf = TransfKind::kLinear;
   MassKind mass = MassKind::kLumped;
-  double rho = 0.0;  // mass density rho_s (>= 0, field "rho"); mass per length rho * A
+  double rho = 0.0;         // mass density rho_s (>= 0, field "rho"); mass per length rho * A
   Seeds<double> rho_seeds;  // DDM: drho/dtheta_k
 };
 

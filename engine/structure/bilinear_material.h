@@ -76,12 +76,13 @@ class BilinearMaterial final : public UniaxialMaterial {
 
   // --- DDM ---
   void set_parameter_seed(int k, const BilinearParameters& d) { seeds_.set(k, d); }
-  BilinearParameters parameter_seed(int k) const { return seeds_[k]; }
   void set_num_parameters(int P) override;
   double conditional_stress_sensitivity(int k) const override;
   double initial_tangent_sensitivity(int k) const override { return seeds_[k].e0; }
   // d(eps_p, alpha)/dtheta_k, committed and trial (after set_strain_sensitivity).
-  const BilinearHistory& committed_history_sensitivity(int k) const { return committed_sens_.at(k); }
+  const BilinearHistory& committed_history_sensitivity(int k) const {
+    return committed_sens_.at(k);
+  }
   const BilinearHistory& trial_history_sensitivity(int k) const { return trial_sens_.at(k); }
 
  protected:

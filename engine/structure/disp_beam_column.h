@@ -37,7 +37,9 @@ class DispBeamColumn2d final : public BeamColumn2d {
   void revert_basic() override;
   Vec3 conditional_basic_force_sensitivity(int k) const override;
   Mat3 initial_basic_stiffness_sensitivity(int k) const override;
-  double section_area_sensitivity(int k) const override { return sections_[0]->area_sensitivity(k); }
+  double section_area_sensitivity(int k) const override {
+    return sections_[0]->area_sensitivity(k);
+  }
   void set_basic_deformation_sensitivity(int k, const Vec3& dv) override;
 
  private:

@@ -24,7 +24,6 @@ class ElasticMaterial final : public UniaxialMaterial {
 
   // --- DDM ---
   void set_modulus_seed(int k, double dE) { seeds_.set(k, dE); }
-  double modulus_seed(int k) const { return seeds_[k]; }
   double conditional_stress_sensitivity(int k) const override { return seeds_[k] * strain_; }
   double initial_tangent_sensitivity(int k) const override { return seeds_[k]; }
 

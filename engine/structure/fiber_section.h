@@ -61,7 +61,7 @@ class FiberSection final : public Section {
 
  private:
   void update_resultants();
-  // Fiber k's area and position sensitivities: dA (the same for all) and dy_k = y_k dd / d.
+  // Per fiber: dA/dtheta_k (the same for all), and (dd/dtheta_k) / d, so that dy_i = y_i times it.
   double fiber_area_sensitivity(int k) const;
   double relative_depth_sensitivity(int k) const { return seeds_[k].depth / geometry_.depth; }
 

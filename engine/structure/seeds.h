@@ -18,7 +18,9 @@ class Seeds {
     if (k >= static_cast<int>(seeds_.size())) seeds_.resize(k + 1, T{});
     seeds_[k] = derivative;
   }
-  T operator[](int k) const { return k < static_cast<int>(seeds_.size()) ? seeds_[k] : T{}; }
+  T operator[](int k) const {
+    return static_cast<std::size_t>(k) < seeds_.size() ? seeds_[k] : T{};  // k < 0: huge
+  }
 
  private:
   std::vector<T> seeds_;

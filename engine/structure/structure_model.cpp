@@ -153,7 +153,8 @@ void StructureModel::revert_to_last_commit() {
 
 Eigen::VectorXd StructureModel::resisting_force() const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(num_dofs());
-  add_element_vectors(u_trial_, [](const Element& e, const Vec6&) { return e.resisting_force(); }, f);
+  add_element_vectors(
+      u_trial_, [](const Element& e, const Vec6&) { return e.resisting_force(); }, f);
   return f;
 }
 
@@ -182,8 +183,8 @@ void StructureModel::add_damping(const AddEntry& add, double factor) const {
 
 Eigen::VectorXd StructureModel::mass_times(const Eigen::VectorXd& a) const {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(num_dofs());
-  add_element_vectors(a, [](const Element& e, const Vec6& ae) -> Vec6 { return e.mass_matrix() * ae; },
-                      out);
+  add_element_vectors(
+      a, [](const Element& e, const Vec6& ae) -> Vec6 { return e.mass_matrix() * ae; }, out);
   for (int n = 0; n < num_nodes(); ++n)
     out.segment<3>(kDofsPerNode * n) += nodes_[n].mass.cwiseProduct(a.segment<3>(kDofsPerNode * n));
   return out;
@@ -195,7 +196,10 @@ Eigen::VectorXd StructureModel::damping_times(const Eigen::VectorXd& v) const {
   if (damping_.a1 != 0.0) {
     const double a1 = damping_.a1;
     add_element_vectors(
-        v, [a1](const Element& e, const Vec6& ve) -> Vec6 { return a1 * (e.initial_stiffness() * ve); },
+        v,
+        [a1](const Element& e, const Vec6& ve) -> Vec6 {
+          return a1 * (e.initial_stiffness() * ve);
+        },
         out);
   }
   return out;
@@ -232,7 +236,8 @@ Eigen::VectorXd StructureModel::resisting_force_sensitivity(int k) const {
   check_parameter(k);
   Eigen::VectorXd df = Eigen::VectorXd::Zero(num_dofs());
   add_element_vectors(
-      u_trial_, [k](const Element& e, const Vec6&) { return e.conditional_force_sensitivity(k); }, df);
+      u_trial_, [k](const Element& e, const Vec6&) { return e.conditional_force_sensitivity(k); },
+      df);
   return df;
 }
 

@@ -8,10 +8,10 @@
 // objects are independent (no static state).
 //
 // Direct differentiation (DDM) w.r.t. parameters theta_k, k = 0..P-1, whose seeds the
-// derived class holds (see seeds.h). In a step: after convergence, the caller obtains the
-// total strain sensitivity from conditional_stress_sensitivity() (through the element and
-// the global solve), passes it to set_strain_sensitivity(), then calls commit(), which
-// commits the history sensitivities together with the state.
+// derived class holds (see seeds.h). Per step, after convergence: the conditional
+// derivatives enter the global sensitivity equations, whose solution gives the total strain
+// sensitivity; it goes to set_strain_sensitivity(), then commit() commits the history
+// sensitivities together with the state.
 #include <memory>
 #include <vector>
 

@@ -2,8 +2,8 @@
 // differences of re-runs with a perturbed parameter:
 //   bilinear material  total stress sensitivity along a cyclic strain path (w.r.t. E0, Fy, b),
 //                      with the path independent of and dependent on the parameters;
-//   fiber section      conditional resultant sensitivity after a plastic history (b, d, E0, Fy, b_h);
-//   elements           basic force sensitivity, conditional force sensitivity after a plastic
+//   fiber section      conditional resultant sensitivity after a plastic history (b, d, E0, Fy,
+//   b_h); elements           basic force sensitivity, conditional force sensitivity after a plastic
 //                      history, mass and initial stiffness sensitivities (elastic and
 //                      displacement-based; Linear and Corotational with a large rotation).
 // All parameters are differentiated in one run (seed k = unit vector k), so that the
@@ -69,10 +69,12 @@ void expect_close(const Eigen::MatrixXd& ddm, const Eigen::MatrixXd& fd, const s
 // Bilinear material: theta = (E0, Fy, b).
 const Theta kMaterialTheta{200e3, 250.0, 0.05};
 // elastic, yielding, elastic unloading, reverse yielding, elastic reloading, yielding again.
-const std::vector<double> kStrainPath{0.0005, 0.001,  0.0017,  0.0024, 0.003,   0.0021, 0.0008, -0.0006,
-                                      -0.0019, -0.0031, -0.002, -0.0004, 0.0012, 0.0026, 0.0036};
+const std::vector<double> kStrainPath{0.0005, 0.001,   0.0017,  0.0024,  0.003,
+                                      0.0021, 0.0008,  -0.0006, -0.0019, -0.0031,
+                                      -0.002, -0.0004, 0.0012,  0.0026,  0.0036};
 
-BilinearMaterial seeded_bilinear(double e0, double fy, double b, int e0_k, int fy_k, int b_k, int P) {
+BilinearMaterial seeded_bilinear(double e0, double fy, double b, int e0_k, int fy_k, int b_k,
+                                 int P) {
   BilinearMaterial m(fy, e0, b);
   m.set_parameter_seed(e0_k, {0.0, 1.0, 0.0});
   m.set_parameter_seed(fy_k, {1.0, 0.0, 0.0});
@@ -118,7 +120,8 @@ void check_material_path(const PathScale& scale) {
   for (int k = 0; k < 3; ++k) {
     ddm(n, k) = m.committed_history_sensitivity(k).plastic_strain;
     ddm(n + 1, k) = m.committed_history_sensitivity(k).back_stress;
-    const Eigen::VectorXd reference = fd([&](const Theta& p) { return run_material(p, scale); }, t, k);
+    const Eigen::VectorXd reference =
+        fd([&](const Theta& p) { return run_material(p, scale); }, t, k);
     expect_close(ddm.col(k), reference, "parameter " + std::to_string(k), worst);
   }
   std::cout << "max relative error " << worst << "\n";
@@ -193,8 +196,8 @@ TEST(FiberSectionSensitivity, ConditionalResultantAfterAPlasticHistory) {
   double worst = 0.0;
   for (int k = 0; k < 5; ++k) {
     const Vec2 reference = fd(run_section, t, k);
-    expect_close(s->conditional_resultant_sensitivity(k), reference, "parameter " + std::to_string(k),
-                 worst);
+    expect_close(s->conditional_resultant_sensitivity(k), reference,
+                 "parameter " + std::to_string(k), worst);
   }
   std::cout << "max relative error " << worst << "\n";
 }
@@ -232,6 +235,8 @@ struct ElementCase {
   Theta theta0;
   std::function<std::unique_ptr<BeamColumn2d>(const Theta&, const BeamOptions&)> make;
 };
+
+void PrintTo(const ElementCase& c, std::ostream* os) { *os << c.name; }
 
 // theta = (E, A, I, rho).
 std::unique_ptr<BeamColumn2d> elastic_beam(const Theta& t, const BeamOptions& o) {
@@ -284,8 +289,12 @@ class ElementSensitivity
   // A plastic first step (large rigid rotation for the corotational transformation) whose
   // displacement depends on theta; the second step's trial displacement is fixed.
   bool corotational() const { return std::get<1>(GetParam()) == TransfKind::kCorotational; }
-  Vec6 first_step() const { return end_displacement(corotational() ? 0.9 : 0.0, 0.002, 0.03, -0.01); }
-  Vec6 second_step() const { return end_displacement(corotational() ? 1.0 : 0.0, 0.0005, 0.01, 0.004); }
+  Vec6 first_step() const {
+    return end_displacement(corotational() ? 0.9 : 0.0, 0.002, 0.03, -0.01);
+  }
+  Vec6 second_step() const {
+    return end_displacement(corotational() ? 1.0 : 0.0, 0.0005, 0.01, 0.004);
+  }
   PathScale scale() const {
     const Theta& t0 = element_case().theta0;
     std::vector<double> c(t0.size());
@@ -352,10 +361,10 @@ INSTANTIATE_TEST_SUITE_P(
                                                      elastic_section_beam}),
                        ::testing::Values(TransfKind::kLinear, TransfKind::kCorotational),
                        ::testing::Values(MassKind::kLumped, MassKind::kConsistent)),
-    [](const auto& info) {
-      return std::get<0>(info.param).name +
-             (std::get<1>(info.param) == TransfKind::kLinear ? "_linear" : "_corotational") +
-             (std::get<2>(info.param) == MassKind::kLumped ? "_lumped" : "_consistent");
+    [](const auto& test) {
+      return std::get<0>(test.param).name +
+             (std::get<1>(test.param) == TransfKind::kLinear ? "_linear" : "_corotational") +
+             (std::get<2>(test.param) == MassKind::kLumped ? "_lumped" : "_consistent");
     });
 
 }  // namespace
