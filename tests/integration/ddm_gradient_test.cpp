@@ -1,0 +1,79 @@
+// DDM against central finite differences on short versions of the paper's two examples
+// (issue 4: "a short version of each (a few dozen steps) runs in the default test label"):
+//  - sloshing-beam with the tank filled up to the beam, so that the water loads the beam from
+//    the first step: tip_ux and base_p w.r.t. E and rho_f;
+//  - dam-break-obstacle with a tall water column against the obstacle and a lower yield stress,
+//    so that its base fibers yield within the run (a zero Fy sensitivity would fail the test):
+//    tip_ux and the base fiber stress w.r.t. E and Fy.
+// The largest |DDM - FDM| over time relative to the largest |FDM| must be below 1e-3 (the
+// figure `pfem check-gradients` prints); the DDM without H and T must be visibly off.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "engine/analysis/gradient_check.h"
+#include "engine/io/model_io.h"
+
+namespace pfem {
+namespace {
+
+pfem::v1::Model example(const std::string& name) {
+  return read_model_file(std::string(PFEM_SOURCE_DIR) + "/examples/" + name + ".json");
+}
+
+void set_region(pfem::v1::Model& model, double x0, double y0, double x1, double y1) {
+  auto* r = model.mutable_fluid_regions(0)->mutable_rectangle();
+  r->mutable_min()->set_x(x0), r->mutable_min()->set_y(y0);
+  r->mutable_max()->set_x(x1), r->mutable_max()->set_y(y1);
+}
+
+GradientCheck check(const pfem::v1::Model& model, double t_end, std::vector<std::string> params) {
+  RunOptions options;
+  options.t_end = t_end;
+  options.params = std::move(params);
+  GradientCheck c = check_gradients(model, options, true);
+  EXPECT_EQ(c.ddm.status, RunStatus::kCompleted) << c.ddm.message;
+  EXPECT_EQ(c.fdm.status, RunStatus::kCompleted) << c.fdm.message;
+  for (const auto& r : c.rows)
+    std::printf("%-18s %-6s max|FDM| %.4e  DDM %.2e  without H,T %.2e\n", r.recorder.c_str(), r.parameter.c_str(),
+                r.max_fdm, r.ddm, r.without_geometric);
+  return c;
+}
+
+// The rows of the given recorders pass the check and are not trivially zero; dropping H and T
+// puts at least one of them off by more than `approximate_off`.
+void expect_exact(const GradientCheck& c, const std::vector<std::string>& recorders, double approximate_off) {
+  double worst_approximate = 0.0;
+  int checked = 0;
+  for (const auto& r : c.rows) {
+    if (std::find(recorders.begin(), recorders.end(), r.recorder) == recorders.end()) continue;
+    ++checked;
+    EXPECT_GT(r.max_fdm, 0.0) << r.recorder << "/" << r.parameter;
+    EXPECT_LE(r.ddm, 1e-3) << r.recorder << "/" << r.parameter;
+    worst_approximate = std::max(worst_approximate, r.without_geometric);
+  }
+  EXPECT_EQ(checked, 2 * static_cast<int>(recorders.size()));
+  EXPECT_GT(worst_approximate, approximate_off);
+}
+
+TEST(DdmGradient, SloshingBeamLoadedFromTheStart) {
+  auto model = example("sloshing-beam");
+  set_region(model, 0.0, 0.0, 0.1, 0.06);  // water up to the beam, 0.06 m deep
+  const GradientCheck c = check(model, 0.04, {"E", "rho_f"});
+  expect_exact(c, {"tip_ux", "base_p"}, 1e-2);
+}
+
+TEST(DdmGradient, DamBreakObstacleYieldsWithinTheRun) {
+  auto model = example("dam-break-obstacle");
+  set_region(model, 0.19, 0.0, 0.292, 0.2);  // a 0.2 m column leaning on the obstacle
+  for (auto& p : *model.mutable_parameters())
+    if (p.name() == "Fy") p.set_value(1.2e4);  // the base fiber reaches it at ~0.02 s
+  const GradientCheck c = check(model, 0.04, {"E", "Fy"});
+  expect_exact(c, {"tip_ux", "base_fiber_stress"}, 1e-2);
+}
+
+}  // namespace
+}  // namespace pfem
