@@ -11,7 +11,8 @@
 //                    [--params a,b] [--sensitivity ddm|fdm|none] [--fdm-eps E]
 //                    [--t-end T] [--dt DT] [--no-cache] [--timeout S]
 // submit prints the job id alone on the first line of stdout. watch exits 0 only when the job
-// succeeded. Failed calls exit 1 with "STATUS_NAME: message" on stderr; usage errors exit 2.
+// succeeded; it shows a progress bar on a terminal, otherwise a line a second at most (and
+// one at every change of state, so the final state's line is always printed). Failed calls exit 1 with "STATUS_NAME: message" on stderr; usage errors exit 2.
 #include <unistd.h>
 
 #include <chrono>
@@ -161,9 +162,17 @@ class Ctl {
     const bool tty = ::isatty(STDOUT_FILENO);
     pfem::v1::Job job;
     bool any = false;
+    // Plain lines (not a terminal): one a second at most, and at every change of state.
+    auto last_line = std::chrono::steady_clock::now() - std::chrono::hours(1);
+    auto last_state = pfem::v1::JOB_STATE_UNSPECIFIED;
     while (reader->Read(&job)) {
       any = true;
-      print_progress(job, tty);
+      const auto now = std::chrono::steady_clock::now();
+      if (tty || job.state() != last_state || now - last_line >= std::chrono::seconds(1)) {
+        print_progress(job, tty);
+        last_line = now;
+        last_state = job.state();
+      }
     }
     if (tty && any) std::cout << '\n';
     check(reader->Finish());

@@ -86,6 +86,27 @@ TEST(Pfemctl, EveryCommandAgainstALocalServer) {
   EXPECT_NE(summary.find("\"steps\": 5,"), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"parameters\": {\"rho_f\": 1010}"), std::string::npos) << summary;
 
+  // DDM (Evaluate's default, here asked for explicitly): the sensitivity histories of every
+  // recorder to every parameter of the model, the same files as `pfem run --sensitivity ddm`.
+  o = run(base + " submit " + model + " --sensitivity ddm --param rho_f=1010");
+  ASSERT_EQ(o.exit_code, 0) << o.out;
+  const std::string ddm_id = o.out.substr(0, o.out.find('\n'));
+  o = run(base + " watch " + ddm_id);
+  EXPECT_EQ(o.exit_code, 0) << o.out;
+  const auto ddm_dir = dir.path / "out_ddm";
+  o = run(base + " result " + ddm_id + " --out " + ddm_dir.string());
+  EXPECT_EQ(o.exit_code, 0) << o.out;
+  EXPECT_EQ(o.out, "wrote " + ddm_dir.string() +
+                       ": 6 samples of 3 responses and 6 sensitivities (job SUCCEEDED)\n");
+  run_options.sensitivity = pfem::SensitivityMethod::kDdm;
+  run_options.params.clear();
+  const auto local_ddm = dir.path / "local_ddm";
+  pfem::write_results(pfem::run(m, run_options), local_ddm);
+  EXPECT_EQ(slurp(ddm_dir / "responses.csv"), slurp(local_ddm / "responses.csv"));
+  EXPECT_EQ(slurp(ddm_dir / "sensitivities.csv"), slurp(local_ddm / "sensitivities.csv"));
+  EXPECT_NE(slurp(ddm_dir / "summary.json").find("\"sensitivity_method\": \"ddm\""),
+            std::string::npos);
+
   o = run(base + " list");
   EXPECT_EQ(o.exit_code, 0);
   EXPECT_NE(o.out.find(id + "  SUCCEEDED  tiny"), std::string::npos) << o.out;

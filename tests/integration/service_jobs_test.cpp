@@ -76,6 +76,43 @@ TEST(ServiceJobs, SubmitWatchResultMatchesAnInProcessRun) {
   EXPECT_EQ(result.sensitivities().columns_size(), 6);  // 3 recorders x 2 parameters
 }
 
+// The same round trip with DDM: GetResult returns the DDM sensitivity histories of every
+// recorder to the chosen parameter, bit-identical to pfem::run in process.
+TEST(ServiceJobs, SubmitWatchResultWithDdmReturnsTheSensitivityHistories) {
+  TempDir dir("jobs_roundtrip_ddm");
+  pfem::server::Server server(local_options(dir.path));
+  auto stub = make_stub(server.address());
+
+  auto request = tiny_request(pfem::v1::SENSITIVITY_METHOD_DDM);
+  request.mutable_options()->add_params("rho_f");
+  const std::string id = submit(*stub, request);
+  const auto job = wait_for_state(*stub, id, pfem::v1::JOB_STATE_SUCCEEDED);
+  ASSERT_EQ(job.state(), pfem::v1::JOB_STATE_SUCCEEDED) << job.error().message();
+
+  pfem::v1::Result result;
+  pfem::client::ConnectionOptions connection;
+  connection.server = server.address();
+  ASSERT_TRUE(pfem::client::fetch_result(*stub, connection, id, &result).ok());
+
+  pfem::v1::Model model = tiny_model();
+  model.mutable_parameters(0)->set_value(1010.0);
+  pfem::RunOptions options;
+  options.sensitivity = pfem::SensitivityMethod::kDdm;
+  options.params = {"rho_f"};
+  const auto expected = pfem::server::to_proto(pfem::run(model, options));
+  EXPECT_EQ(result.summary().sensitivity_method(), "ddm");
+  ASSERT_EQ(result.summary().parameters_size(), 1);
+  EXPECT_EQ(result.summary().parameters(0), "rho_f");
+  ASSERT_EQ(result.sensitivities().columns_size(), 3);  // 3 recorders x 1 parameter
+  EXPECT_EQ(result.sensitivities().columns(0).name(), "dbottom_p/drho_f");
+  EXPECT_EQ(result.sensitivities().time_size(), 6);
+  EXPECT_EQ(result.responses().SerializeAsString(), expected.responses().SerializeAsString());
+  EXPECT_EQ(result.sensitivities().SerializeAsString(),
+            expected.sensitivities().SerializeAsString());
+  // Hydrostatic-like: the bottom pressure grows with the density once the water has settled.
+  EXPECT_GT(result.sensitivities().columns(0).values(5), 0.0);
+}
+
 TEST(ServiceJobs, LargeResultsStreamInChunksAndReassembleExactly) {
   TempDir dir("jobs_chunks");
   FakeEngine engine;

@@ -16,8 +16,7 @@ constexpr int kCalls = 200;
 const double kRho[] = {990.0, 1000.0, 1010.0, 1020.0};
 
 TEST(ServiceLoad, ThirtyTwoClientsTwoHundredEvaluations) {
-  const bool ddm = method_available(pfem::SensitivityMethod::kDdm);
-  const auto method = ddm ? pfem::SensitivityMethod::kDdm : pfem::SensitivityMethod::kFdm;
+  const auto method = pfem::SensitivityMethod::kDdm;  // Evaluate's default
   // Reference values: bottom_p max and its gradient, in process.
   std::vector<pfem::FunctionalValue> expected;
   for (double rho : kRho) {
@@ -44,8 +43,7 @@ TEST(ServiceLoad, ThirtyTwoClientsTwoHundredEvaluations) {
       for (int i = next++; i < kCalls; i = next++) {
         pfem::v1::EvaluateRequest request;
         *request.mutable_model() = tiny_model();
-        request.set_sensitivity(ddm ? pfem::v1::SENSITIVITY_METHOD_DDM
-                                    : pfem::v1::SENSITIVITY_METHOD_FDM);
+        request.set_sensitivity(pfem::v1::SENSITIVITY_METHOD_DDM);
         auto* v = request.add_parameter_values();
         v->set_name("rho_f");
         v->set_value(kRho[i % 4]);
@@ -82,9 +80,9 @@ TEST(ServiceLoad, ThirtyTwoClientsTwoHundredEvaluations) {
   std::sort(latencies.begin(), latencies.end());
   ASSERT_EQ(latencies.size(), static_cast<std::size_t>(kCalls));
   std::printf("load: %d calls from %d clients in %.2f s (%.0f calls/s), p50 %.1f ms, p99 %.1f ms, "
-              "%d cached, %s\n",
+              "%d cached, DDM\n",
               kCalls, kClients, wall, kCalls / wall, 1e3 * latencies[kCalls / 2],
-              1e3 * latencies[kCalls * 99 / 100], cached.load(), ddm ? "DDM" : "FDM");
+              1e3 * latencies[kCalls * 99 / 100], cached.load());
   EXPECT_EQ(errors.load(), 0);
   EXPECT_EQ(wrong.load(), 0);
   EXPECT_LE(wall, 60.0);

@@ -38,19 +38,6 @@ inline const char* kTinyModelJson = R"({
 
 inline pfem::v1::Model tiny_model() { return pfem::parse_model_json(kTinyModelJson); }
 
-// Skips when the engine does not offer `method` yet (it reports that as a ModelError).
-inline bool method_available(pfem::SensitivityMethod method) {
-  pfem::RunOptions options;
-  options.sensitivity = method;
-  options.t_end = 0.002;
-  try {
-    pfem::run(tiny_model(), options);
-    return true;
-  } catch (const pfem::ModelError&) {
-    return false;
-  }
-}
-
 // A directory removed when the test ends.
 struct TempDir {
   std::filesystem::path path;

@@ -37,6 +37,8 @@ TINY = {
                    {"name": "kappa", "targets": ["fluid.kappa"]}],
 }
 TOKEN = "python-test-token"
+# The sloshing example is run to this time: the collapsing column reaches the beam by then.
+SLOSHING_T_END = 0.15
 
 
 class ClientTest(unittest.TestCase):
@@ -129,27 +131,68 @@ class ClientTest(unittest.TestCase):
             with open(path, "rb") as f:
                 self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
 
-    def test_example_script_writes_the_figures(self):
+    def test_fig34_script_on_the_sloshing_example_with_ddm(self):
+        """The Fig. 3/4 script on a short run of the sloshing example: DDM through the service
+        (FDM overlaid), the PNGs written, and the sensitivities the service returned equal to
+        those of `pfem run` on the same model and options (same engine, one thread)."""
         here = os.path.dirname(os.path.abspath(__file__))
         spec = importlib.util.spec_from_file_location(
             "fig34", os.path.join(here, "..", "examples", "fig34_sensitivities.py"))
         fig34 = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(fig34)
-        model = os.path.join(self.tmp, "tiny.json")
-        import json
-        with open(model, "w") as f:
-            json.dump(TINY, f)
+        model = os.path.join(os.environ["PFEM_SOURCE_DIR"], "examples", "sloshing-beam.json")
+        t_end = SLOSHING_T_END
         out = os.path.join(self.tmp, "fig34")
         printed = io.StringIO()
         with redirect_stdout(printed):
             rc = fig34.main([model, "--server", self.address, "--token-file", self.token_file,
-                             "--recorders", "bottom_p,front_x", "--params", "rho_f,kappa",
-                             "--sensitivity", "fdm", "--scaled", "--out", out])
+                             "--t-end", str(t_end), "--params", "E,rho_f", "--fdm",
+                             "--out", out])
         self.assertEqual(rc, 0)
-        for name in ("fig3_responses.png", "fig4_sensitivities.png", "responses.png"):
-            self.assertTrue(os.path.getsize(os.path.join(out, name)) > 1000, name)
-        self.assertIn("fig4_sensitivities.png", printed.getvalue())
+        text = printed.getvalue()
+        for name in ("fig3_responses.png", "fig4_sensitivities.png", "responses.png",
+                     "sensitivities.png"):
+            path = os.path.join(out, name)
+            with open(path, "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n", name)
+            self.assertGreater(os.path.getsize(path), 1000, name)
+            self.assertIn(path, text)
+        ids = {line.split()[0]: line.split()[2] for line in text.splitlines()
+               if line.split()[1:2] == ["job"]}
+        self.assertEqual(sorted(ids), ["ddm", "fdm"], text)
 
+        served = self.client.result(ids["ddm"])
+        self.assertEqual(served.summary.sensitivity_method, "ddm")
+        self.assertEqual(served.parameters, ["E", "rho_f"])
+        local = os.path.join(self.tmp, "sloshing-cli")
+        subprocess.run([os.environ["PFEM_CLI"], "run", model, "--out", local, "--t-end",
+                        str(t_end), "--sensitivity", "ddm", "--params", "E,rho_f"],
+                       check=True, stdout=subprocess.DEVNULL)
+        cli = fig34.read_result_dir(local)
+        self.assertEqual(cli.method, "ddm")
+        np.testing.assert_array_equal(served.time, cli.time)
+        np.testing.assert_array_equal(served.sensitivity_time, cli.sensitivity_time)
+        self.assertEqual(sorted(served.sensitivities), sorted(cli.sensitivities))
+        for name, values in cli.sensitivities.items():
+            peak = np.max(np.abs(values))
+            self.assertGreater(peak, 0.0, name)  # the water has reached the beam
+            # bit for bit: the same engine with one thread, and the CSV's %.17g round-trips
+            np.testing.assert_array_equal(served.sensitivities[name], values, err_msg=name)
+        for name, values in cli.responses.items():
+            np.testing.assert_array_equal(served.responses[name], values, err_msg=name)
+        # DDM and FDM (the overlay) agree closely.
+        fdm = self.client.result(ids["fdm"])
+        for name, values in served.sensitivities.items():
+            peak = np.max(np.abs(values))
+            np.testing.assert_allclose(fdm.sensitivities[name], values, rtol=0,
+                                       atol=1e-3 * peak, err_msg=name)
+
+        # The same figures from the result directory (no server).
+        offline = os.path.join(self.tmp, "fig34-offline")
+        with redirect_stdout(io.StringIO()):
+            self.assertEqual(fig34.main(["--result-dir", local, "--out", offline]), 0)
+        for name in ("fig3_responses.png", "fig4_sensitivities.png"):
+            self.assertGreater(os.path.getsize(os.path.join(offline, name)), 1000, name)
 
 if __name__ == "__main__":
     unittest.main()
