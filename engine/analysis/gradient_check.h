@@ -16,6 +16,7 @@ namespace pfem {
 struct GradientCheckRow {
   std::string recorder, parameter;
   double max_fdm = 0.0;           // largest |FDM| over time
+  double max_ddm = 0.0;           // largest |DDM| over time
   double ddm = 0.0;               // largest |DDM - FDM| / max_fdm
   double without_geometric = -1;  // same without H, T; -1 when not computed
 };

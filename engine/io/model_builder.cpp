@@ -179,13 +179,14 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
     pb.domain = {wb.xmin - grow, wb.ymin - grow, wb.xmax + grow, wb.ymax + grow};
   }
 
+  // The model with every parameter's value on its targets (the structure is built from it).
+  pfem::v1::Model with_values = model;
+  apply_parameter_overrides(with_values);
   std::vector<std::vector<std::string>> sensitivity_targets;
   sensitivity_seeds(model, sensitivity_params, pb, sensitivity_targets);
   auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments);
   std::map<std::string, int> structure_node_by_name, element_by_name;
   if (model.has_structure()) {
-    pfem::v1::Model with_values = model;
-    apply_parameter_overrides(with_values);
     StructureBuild sb = build_structure(with_values, sensitivity_targets);
     for (int k = 0; k < sb.model.num_nodes(); ++k) {
       const auto& node = sb.model.node(k);
@@ -230,9 +231,11 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
     }
     pb.recorders.push_back(spec);
   }
+  // A parameter without a value takes its first target's value after every override, so that it
+  // never undoes another parameter that sets the same target.
   for (const auto& p : model.parameters()) {
     ParameterSpec spec{p.name(), {p.targets().begin(), p.targets().end()}, 0.0};
-    spec.value = p.has_value() ? p.value() : model_target_value(model, spec.targets.front());
+    spec.value = p.has_value() ? p.value() : model_target_value(with_values, spec.targets.front());
     set_parameter(pb, spec, spec.value);
     pb.parameters.push_back(spec);
   }

@@ -146,10 +146,14 @@ class UnifiedStep {
   // Moves the particles outside the mesh ballistically; one whose path crosses a wall stops
   // where it was (it hits the wall and sticks, as water does at a no-slip wall).
   void move_free_particles(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const;
-  // The DDM of the converged step (engine/solve/step_sensitivity.cpp): the exact Jacobian with
-  // H, T and the structure's consistent tangent, factorised once by UMFPACK, and one
-  // right-hand side per parameter; then the sensitivities committed to the nodes, the bubbles
-  // and the structure (before the structure's own commit).
+  // The exact Jacobian at the current iterate (engine/solve/step_sensitivity.cpp): H and T per
+  // element (kept in geometric_; zero without geometric terms) and the structure's consistent
+  // tangent, condensed, factorised by UMFPACK. (As a Newton matrix it did not pay: the modified
+  // Newton's symmetric factorisation is cheaper than the few iterations it would save.)
+  void factorize_jacobian(const mesh::FluidMesh& mesh, const StepSettings& s, bool geometric_terms);
+  // The DDM of the converged step: the Jacobian there, factorised once, and one right-hand side
+  // per parameter; then the sensitivities committed to the nodes, the bubbles and the structure
+  // (before the structure's own commit).
   void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
   Eigen::VectorXd structure_sensitivity_rhs(const StepSettings& s, const NodeState& nodes, int k) const;
   void commit_sensitivities(const StepSettings& s, NodeState& nodes);
@@ -185,9 +189,11 @@ class UnifiedStep {
   std::vector<BubbleSensitivity> dvbn_;
   std::unordered_map<std::uint64_t, BubbleSensitivity> bubble_sensitivity_by_triangle_;
   Eigen::MatrixXd dv_, dp_;
-  std::vector<BubbleCondensation> sensitivity_bubbles_;
-  SparseMatrix sensitivity_matrix_;
-  LuSolver sensitivity_solver_;
+  // The exact Jacobian's pieces.
+  std::vector<fluid::GeometricDerivatives> geometric_;
+  std::vector<BubbleCondensation> jacobian_bubbles_;
+  SparseMatrix jacobian_;
+  LuSolver jacobian_solver_;
 };
 
 }  // namespace pfem

@@ -1,4 +1,4 @@
-// The DDM of one converged PFEM step (theory §5, eqs. (38)-(46)).
+// The exact Jacobian of a PFEM step and the DDM of the converged step (theory §5, (38)-(46)).
 //
 // Differentiating the converged residual r(v, p; x = x_n + dt v, v_n, p_n, theta) = 0 gives
 //   -(dr/dv + dt dr/dx) dv - dr/dp dp = dr/dx dx_n + dr/dv_n dv_n + dr/dp_n dp_n + dr/dtheta|
@@ -13,11 +13,35 @@
 
 namespace pfem {
 
+void UnifiedStep::factorize_jacobian(const mesh::FluidMesh& mesh, const StepSettings& s, bool geometric_terms) {
+  const int ne = static_cast<int>(mesh.triangles.size());
+  geometric_.resize(ne);
+  for (int e = 0; e < ne; ++e) {
+    if (geometric_terms) {
+      fluid::geometric_derivatives(geometries_[e], mats_[e], s.fluid.mu, s.thickness, s.dt, element_state(mesh, e),
+                                   geometric_[e]);
+    } else {
+      geometric_[e].drv_dx.setZero();
+      geometric_[e].drp_dx.setZero();
+    }
+  }
+  std::vector<Eigen::Triplet<double>> t;
+  condensed_triplets(mesh, s, &geometric_, jacobian_bubbles_, t);
+  jacobian_.resize(n_node_v_ + n_p_, n_node_v_ + n_p_);
+  jacobian_.setFromTriplets(t.begin(), t.end());
+  jacobian_solver_.analyze(jacobian_);
+  jacobian_solver_.factorize(jacobian_);
+}
+
 void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
+  try {
+    factorize_jacobian(mesh, s, s.geometric_terms);
+  } catch (const std::runtime_error& e) {
+    throw StepFailure(std::string("sensitivity matrix: ") + e.what());
+  }
   const int num_params = static_cast<int>(s.sensitivity.size());
   const int ne = static_cast<int>(mesh.triangles.size());
   const double inv_dt = 1.0 / s.dt;
-  std::vector<fluid::GeometricDerivatives> geometric(ne);
   Eigen::MatrixXd rv = Eigen::MatrixXd::Zero(n_v_, num_params), rp = Eigen::MatrixXd::Zero(n_p_, num_params);
   Eigen::Matrix<double, 6, 1> dxn;
   fluid::Vec8 dvn;
@@ -26,13 +50,7 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
     const auto& m = mats_[e];
     const auto& tri = mesh.triangles[e];
     const fluid::ElementState st = element_state(mesh, e);
-    auto& gd = geometric[e];
-    if (s.geometric_terms) {
-      fluid::geometric_derivatives(geometries_[e], m, s.fluid.mu, s.thickness, s.dt, st, gd);
-    } else {
-      gd.drv_dx.setZero();
-      gd.drp_dx.setZero();
-    }
+    const auto& gd = geometric_[e];
     const int bubble = n_node_v_ + 2 * e;
     for (int k = 0; k < num_params; ++k) {
       for (int a = 0; a < 3; ++a) {
@@ -64,19 +82,8 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
     for (std::size_t j = 0; j < s_dof_.size(); ++j)
       if (s_dof_[j] >= 0) rv(s_dof_[j], k) += r[j];
   }
-
-  std::vector<Eigen::Triplet<double>> t;
-  condensed_triplets(mesh, s, &geometric, sensitivity_bubbles_, t);
-  sensitivity_matrix_.resize(n_node_v_ + n_p_, n_node_v_ + n_p_);
-  sensitivity_matrix_.setFromTriplets(t.begin(), t.end());
-  try {
-    sensitivity_solver_.analyze(sensitivity_matrix_);
-    sensitivity_solver_.factorize(sensitivity_matrix_);
-  } catch (const std::runtime_error& e) {
-    throw StepFailure(std::string("sensitivity matrix: ") + e.what());
-  }
-  solve_condensed(mesh, sensitivity_bubbles_,
-                  [this](const Eigen::MatrixXd& b) { return sensitivity_solver_.solve(b); }, rv, rp, dv_, dp_);
+  solve_condensed(mesh, jacobian_bubbles_, [this](const Eigen::MatrixXd& b) { return jacobian_solver_.solve(b); },
+                  rv, rp, dv_, dp_);
   if (!dv_.allFinite() || !dp_.allFinite()) throw StepFailure("non-finite sensitivities");
 }
 

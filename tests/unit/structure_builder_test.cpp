@@ -477,7 +477,7 @@ TEST(SloshingBeam, ElementRecorders) {
 TEST(SloshingBeam, ParameterTargets) {
   auto m = sloshing();
   auto* p = m.add_parameters();
-  p->set_name("b");
+  p->set_name("linked");
   p->add_targets("section.square.width");
   p->add_targets("thickness");
   p->add_targets("beam.beam.rho");

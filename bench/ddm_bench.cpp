@@ -1,0 +1,87 @@
+// The cost of exact gradients (issue 4): the dam-break obstacle to t = 0.3 s with P = 1, 2, 4
+// and 8 parameters by DDM, against central finite differences of the same parameters.
+//   pfem-bench-ddm [--t-end T] [--fdm all|1]
+// Prints per P: response seconds, sensitivity seconds (their ratio), and the central-FDM
+// seconds: measured for every P with --fdm all, otherwise measured at P = 1 (3 runs) and
+// scaled to 2P + 1 runs for the others (every FDM run costs one plain response run). Then the
+// least-squares split of the sensitivity cost into a fixed part per step (assembly and the one
+// factorisation) and a part per parameter, both as fractions of the response.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "engine/analysis/run.h"
+#include "engine/io/model_io.h"
+
+namespace {
+// Eight parameters of the obstacle model: the example's E, Fy, rho_f, mu, kappa, then the
+// hardening ratio, the section depth and the obstacle's density.
+pfem::v1::Model obstacle_with_eight_parameters() {
+  auto model = pfem::read_model_file(std::string(PFEM_SOURCE_DIR) + "/examples/dam-break-obstacle.json");
+  const std::string material = model.structure().materials(0).name();
+  const std::string section = model.structure().sections(0).name();
+  const std::string beam = model.structure().beams(0).name();
+  for (const auto& [name, target] : std::vector<std::pair<std::string, std::string>>{
+           {"b", "material." + material + ".hardening_ratio"},
+           {"depth", "section." + section + ".depth"},
+           {"rho_s", "beam." + beam + ".rho"}}) {
+    auto* p = model.add_parameters();
+    p->set_name(name);
+    p->add_targets(target);
+  }
+  return model;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  double t_end = 0.3;
+  bool fdm_all = false;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i], v = argv[i + 1];
+    if (a == "--t-end") t_end = std::stod(v);
+    else if (a == "--fdm") fdm_all = v == "all";
+  }
+  const auto model = obstacle_with_eight_parameters();
+  std::vector<std::string> names;
+  for (const auto& p : model.parameters()) names.push_back(p.name());
+
+  std::printf("dam-break obstacle to t = %g s, 1 thread; DDM vs central FDM (2P + 1 runs)\n", t_end);
+  std::printf("%3s %-36s %10s %12s %9s %11s %8s\n", "P", "parameters", "response s", "sensitivity s", "sens/resp",
+              "FDM s", "FDM/DDM");
+  double fdm_run_seconds = 0.0;  // one response run, from the measured P = 1 FDM
+  std::vector<double> ps, ratios;
+  for (const int count : {1, 2, 4, 8}) {
+    pfem::RunOptions options;
+    options.t_end = t_end;
+    options.params.assign(names.begin(), names.begin() + count);
+    options.sensitivity = pfem::SensitivityMethod::kDdm;
+    const auto ddm = pfem::run(model, options).summary;
+    double fdm = 0.0;
+    const char* how = "";
+    if (count == 1 || fdm_all) {
+      options.sensitivity = pfem::SensitivityMethod::kFdm;
+      fdm = pfem::run(model, options).summary.wall_seconds;
+      if (count == 1) fdm_run_seconds = fdm / 3.0;
+    } else {
+      fdm = (2 * count + 1) * fdm_run_seconds;
+      how = " (scaled)";
+    }
+    std::string list;
+    for (int k = 0; k < count; ++k) list += (k ? "," : "") + names[k];
+    const double ratio = ddm.sensitivity_seconds / ddm.response_seconds;
+    std::printf("%3d %-36s %10.1f %12.1f %9.2f %11.1f %8.1f%s%s\n", count, list.c_str(), ddm.response_seconds,
+                ddm.sensitivity_seconds, ratio, fdm, fdm / ddm.wall_seconds, how,
+                ddm.status == pfem::RunStatus::kCompleted ? "" : ("  " + ddm.message).c_str());
+    ps.push_back(count);
+    ratios.push_back(ratio);
+  }
+  // sens/resp = fixed + per_param * P, least squares.
+  double sp = 0, sr = 0, spp = 0, spr = 0;
+  const double n = static_cast<double>(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i) sp += ps[i], sr += ratios[i], spp += ps[i] * ps[i], spr += ps[i] * ratios[i];
+  const double per_param = (n * spr - sp * sr) / (n * spp - sp * sp), fixed = (sr - per_param * sp) / n;
+  std::printf("sensitivity cost = %.2f x response (assembly + one factorisation per step) + %.1f %% of the "
+              "response per parameter (aim: <= 0.33 and <= 5 %%)\n",
+              fixed, 100 * per_param);
+  return 0;
+}
