@@ -6,7 +6,6 @@
 // consistent tangent) and does not depend on the parameter: one UMFPACK factorisation, one
 // multi-column back-substitution. The bubble is condensed per element exactly as in the
 // response, and its sensitivity is carried from step to step by triangle like its velocity.
-#include <chrono>
 #include <stdexcept>
 
 #include "engine/solve/fluid_step.h"
@@ -16,6 +15,7 @@ namespace pfem {
 void UnifiedStep::factorize_jacobian(const mesh::FluidMesh& mesh, const StepSettings& s, bool geometric_terms) {
   const int ne = static_cast<int>(mesh.triangles.size());
   geometric_.resize(ne);
+#pragma omp parallel for schedule(static) num_threads(s.threads)
   for (int e = 0; e < ne; ++e) {
     if (geometric_terms) {
       fluid::geometric_derivatives(geometries_[e], mats_[e], s.fluid.mu, s.thickness, s.dt, element_state(mesh, e),
