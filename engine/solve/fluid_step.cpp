@@ -256,17 +256,16 @@ void UnifiedStep::solve_condensed(const mesh::FluidMesh& mesh, const std::vector
   rhs.topRows(n_node_v_) = rv.topRows(n_node_v_);
   rhs.bottomRows(n_p_) = -rp;
   const int ne = static_cast<int>(mesh.triangles.size());
-  std::vector<Eigen::Matrix<double, 2, Eigen::Dynamic>> z(ne);  // Abb^-1 r_b per element
+  Eigen::MatrixXd z(2 * ne, cols);  // Abb^-1 r_b, two rows per element
   for (int e = 0; e < ne; ++e) {
     const auto& b = bubbles[e];
-    z[e] = b.inv_bb * rv.middleRows<2>(n_node_v_ + 2 * e);
-    const Eigen::Matrix<double, 6, Eigen::Dynamic> fc = b.a_cb * z[e];
-    const Eigen::Matrix<double, 3, Eigen::Dynamic> fp = b.g_b.transpose() * z[e];
+    const auto ze = z.middleRows<2>(2 * e);
+    z.middleRows<2>(2 * e).noalias() = b.inv_bb * rv.middleRows<2>(n_node_v_ + 2 * e);
     const auto& tri = mesh.triangles[e];
     for (int k = 0; k < 3; ++k) {
-      if (const int dx = vx_dof_[tri[k]]; dx >= 0) rhs.row(dx) -= fc.row(2 * k);
-      if (const int dy = vy_dof_[tri[k]]; dy >= 0) rhs.row(dy) -= fc.row(2 * k + 1);
-      if (const int q = pdof_[tri[k]]; q >= 0) rhs.row(n_node_v_ + q) += fp.row(k);
+      if (const int dx = vx_dof_[tri[k]]; dx >= 0) rhs.row(dx).noalias() -= b.a_cb.row(2 * k) * ze;
+      if (const int dy = vy_dof_[tri[k]]; dy >= 0) rhs.row(dy).noalias() -= b.a_cb.row(2 * k + 1) * ze;
+      if (const int q = pdof_[tri[k]]; q >= 0) rhs.row(n_node_v_ + q).noalias() += b.g_b.col(k).transpose() * ze;
     }
   }
   const Eigen::MatrixXd x = solve(rhs);
@@ -276,6 +275,7 @@ void UnifiedStep::solve_condensed(const mesh::FluidMesh& mesh, const std::vector
   // Recover each bubble: dvb = Abb^-1 (r_b - A_bc dvc + G_b dp).
   Eigen::Matrix<double, 6, Eigen::Dynamic> dvc(6, cols);
   Eigen::Matrix<double, 3, Eigen::Dynamic> dpe(3, cols);
+  Eigen::Matrix<double, 2, Eigen::Dynamic> coupling(2, cols);
   for (int e = 0; e < ne; ++e) {
     const auto& b = bubbles[e];
     const auto& tri = mesh.triangles[e];
@@ -285,7 +285,10 @@ void UnifiedStep::solve_condensed(const mesh::FluidMesh& mesh, const std::vector
       if (dy >= 0) dvc.row(2 * k + 1) = x.row(dy); else dvc.row(2 * k + 1).setZero();
       if (q >= 0) dpe.row(k) = x.row(n_node_v_ + q); else dpe.row(k).setZero();
     }
-    dv.middleRows<2>(n_node_v_ + 2 * e) = z[e] + b.inv_bb * (b.g_b * dpe - b.a_bc * dvc);
+    coupling.noalias() = b.g_b * dpe;
+    coupling.noalias() -= b.a_bc * dvc;
+    dv.middleRows<2>(n_node_v_ + 2 * e) = z.middleRows<2>(2 * e);
+    dv.middleRows<2>(n_node_v_ + 2 * e).noalias() += b.inv_bb * coupling;
   }
 }
 

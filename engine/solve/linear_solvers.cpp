@@ -48,8 +48,10 @@ struct LuSolver::Impl {
 
 LuSolver::LuSolver() : impl_(std::make_unique<Impl>()) {
   // The fluid's matrices have a symmetric pattern and a strong diagonal: UMFPACK's symmetric
-  // strategy (AMD on A + A^T, diagonal pivots preferred) factorises them several times faster.
+  // strategy (AMD on A + A^T, diagonal pivots preferred). No iterative refinement in solve():
+  // it doubled the back-solve time and changed the DDM's sensitivities by 2e-12 relative.
   impl_->lu.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+  impl_->lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
 }
 LuSolver::~LuSolver() = default;
 

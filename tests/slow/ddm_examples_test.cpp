@@ -4,9 +4,8 @@
 // The largest |DDM - FDM| over time relative to the largest |FDM| must be at most 1e-3, and the
 // DDM without H and T must fail that check. The finite-difference step is the one at which the
 // perturbed runs keep the base run's discrete path (the mesh connectivity is piecewise constant
-// in the parameters, theory §6): 1e-7 already flips a remeshing decision late in both runs, so
-// sloshing uses the paper's 1e-8 and the obstacle 1e-10 (the paper: 1e-12; at 1e-10 the FDM's
-// own noise from the Newton tolerance is ~1e-4).
+// in the parameters, theory §6): at 1e-7 a remeshing decision of the sloshing run differs
+// between the perturbed runs at 0.42 s, so both checks use the paper's 1e-8.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -47,7 +46,7 @@ TEST(DdmExamples, SloshingBeamToHalfASecond) {
 }
 
 TEST(DdmExamples, DamBreakObstacleToPointFourSeconds) {
-  expect_exact("dam-break-obstacle", 0.4, 1e-10, {"E", "Fy"}, {"tip_ux"});
+  expect_exact("dam-break-obstacle", 0.4, 1e-8, {"E", "Fy"}, {"tip_ux"});
 }
 
 }  // namespace
