@@ -6,6 +6,7 @@
 // consistent tangent) and does not depend on the parameter: one UMFPACK factorisation, one
 // multi-column back-substitution. The bubble is condensed per element exactly as in the
 // response, and its sensitivity is carried from step to step by triangle like its velocity.
+#include <algorithm>
 #include <stdexcept>
 
 #include "engine/solve/fluid_step.h"
@@ -27,9 +28,16 @@ void UnifiedStep::factorize_jacobian(const mesh::FluidMesh& mesh, const StepSett
   }
   std::vector<Eigen::Triplet<double>> t;
   condensed_triplets(mesh, s, &geometric_, jacobian_bubbles_, t);
+  SparseMatrix previous = std::move(jacobian_);
   jacobian_.resize(n_node_v_ + n_p_, n_node_v_ + n_p_);
   jacobian_.setFromTriplets(t.begin(), t.end());
-  jacobian_solver_.analyze(jacobian_);
+  // The symbolic analysis is reused while the pattern stays (a mesh whose connectivity and free
+  // surface did not change since the last factorisation, as in water at rest).
+  const auto same = [](const int* a, const int* b, Eigen::Index n) { return std::equal(a, a + n, b); };
+  const bool same_pattern = previous.rows() == jacobian_.rows() && previous.nonZeros() == jacobian_.nonZeros() &&
+                            same(previous.outerIndexPtr(), jacobian_.outerIndexPtr(), jacobian_.cols() + 1) &&
+                            same(previous.innerIndexPtr(), jacobian_.innerIndexPtr(), jacobian_.nonZeros());
+  if (!same_pattern) jacobian_solver_.analyze(jacobian_);
   jacobian_solver_.factorize(jacobian_);
 }
 
