@@ -41,6 +41,7 @@ AnalysisResult analyze(const Problem& problem, const LimitState& g, const Analys
   if (options.monte_carlo > 0) {
     r.monte_carlo = monte_carlo(g, transform, {options.monte_carlo, options.seed});
   }
+  r.simulations = g.simulation_stats();
   r.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;

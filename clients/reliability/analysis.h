@@ -37,6 +37,7 @@ struct AnalysisResult {
   std::optional<SormResult> sorm;
   std::optional<SamplingResult> importance_sampling;
   std::optional<SamplingResult> monte_carlo;
+  std::optional<SimulationStats> simulations;    // model limit states: the PFEM runs behind g
   double wall_seconds = 0.0;
 };
 

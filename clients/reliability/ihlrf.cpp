@@ -1,7 +1,10 @@
 // Improved HL-RF (Zhang & Der Kiureghian 1995): the HL-RF direction
 //   d = [(grad G . u - G) / ||grad G||^2] grad G - u
-// with an Armijo line search on the merit function m(u) = ||u||^2 / 2 + c |G(u)|,
-// c = 2 ||u|| / ||grad G|| + 10 (> ||u|| / ||grad G||, which makes d a descent direction).
+// with an Armijo line search on the merit function m(u) = ||u||^2 / 2 + c |G(u)| / |G(u0)|,
+// c = 2 ||u|| / ||grad G / G(u0)|| + 10 (> ||u|| / ||grad G / G(u0)||, which makes d a descent
+// direction). G is scaled by its value at the start point so that the merit function does not
+// depend on the units of g: unscaled, a g of order 1e-3 (a deflection in metres) gives
+// c |G| << ||u||^2 / 2 and the line search creeps towards the design point in small steps.
 #include <cmath>
 #include <limits>
 #include <string>
@@ -55,10 +58,10 @@ SearchOutcome search_ihlrf(StandardSpaceFunction& G, const Eigen::VectorXd& u0,
     }
     const Eigen::VectorXd& u = out.u;
     const Eigen::VectorXd d = ((grad.dot(u) - g) / (gn * gn)) * grad - u;
-    const double c = 2.0 * u.norm() / gn + 10.0;
-    const double merit = 0.5 * u.squaredNorm() + c * std::abs(g);
+    const double c = 2.0 * u.norm() / (gn / g_scale) + 10.0;
+    const double merit = 0.5 * u.squaredNorm() + c * std::abs(g) / g_scale;
     const double sign = g > 0 ? 1.0 : (g < 0 ? -1.0 : 0.0);
-    const double slope = (u + c * sign * grad).dot(d);  // < 0 by the choice of c
+    const double slope = (u + (c / g_scale) * sign * grad).dot(d);  // < 0 by the choice of c
     double step = 1.0;
     Eigen::VectorXd u_new;
     Eigen::VectorXd grad_new;
@@ -68,7 +71,7 @@ SearchOutcome search_ihlrf(StandardSpaceFunction& G, const Eigen::VectorXd& u0,
       u_new = u + step * d;
       g_new = G.value_and_gradient(u_new, grad_new);
       if (!std::isfinite(g_new)) continue;
-      const double merit_new = 0.5 * u_new.squaredNorm() + c * std::abs(g_new);
+      const double merit_new = 0.5 * u_new.squaredNorm() + c * std::abs(g_new) / g_scale;
       // (The rounding allowance lets the full step through once the merit function is flat to
       // machine precision, near convergence, instead of stalling on shrinking steps.)
       const double rounding = 8.0 * std::numeric_limits<double>::epsilon() * merit;

@@ -3,9 +3,10 @@
 // empty gradient span means "not needed"). Failure is g < 0.
 //
 // Implementations: ExpressionLimitState (exact gradients by reverse-mode AD over the parsed
-// expression) now; a model limit state (a PFEM run with DDM gradients, locally or through the
-// gRPC service) implements the same interface later.
+// expression) and ModelLimitState (clients/reliability/model_limit_state.h: a PFEM run with
+// DDM or FDM gradients, in-process or through the gRPC service).
 #include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -15,6 +16,7 @@
 
 #include "clients/reliability/expression.h"
 #include "clients/reliability/nataf.h"
+#include "clients/reliability/simulation_stats.h"
 
 namespace pfem::reliability {
 
@@ -36,6 +38,8 @@ class LimitState {
   virtual bool provides_gradient() const = 0;
   // Where the gradients come from, for reports: e.g. "exact (expression AD)".
   virtual std::string gradient_source() const = 0;
+  // What the simulations behind g cost so far; nullopt for limit states without simulations.
+  virtual std::optional<SimulationStats> simulation_stats() const { return std::nullopt; }
 };
 
 class ExpressionLimitState final : public LimitState {

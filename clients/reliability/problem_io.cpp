@@ -16,8 +16,8 @@ namespace {
 
 using pfem::v1::RandomVariable;
 
-// "(variables[1]) foo: Cannot find field." -> {"variables[1].foo", "unknown field"};
-// "(variables[0].mean): invalid value ..." -> {"variables[0].mean", "invalid value ..."}.
+}  // namespace
+
 FieldError json_error(const std::string& status_message) {
   std::string text = status_message.substr(0, status_message.find('\n'));
   static const std::regex unknown(R"(^(?:\(([^)]*)\)\s*)?(\S+): Cannot find field\.$)");
@@ -31,6 +31,8 @@ FieldError json_error(const std::string& status_message) {
   if (text.empty()) text = "the JSON parser rejected the input";
   return {"", "invalid JSON: " + text};
 }
+
+namespace {
 
 bool is_identifier(const std::string& s) {
   if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
@@ -411,8 +413,9 @@ Problem build_problem(const pfem::v1::ReliabilityProblem& message) {
 std::unique_ptr<LimitState> make_limit_state(const Problem& problem) {
   if (problem.limit_state_kind == LimitStateKind::kModel) {
     throw NotAvailableError(
-        "limit_state.model: model limit states (PFEM simulations) are not available yet in "
-        "pfem-form; use an \"expression\" limit state");
+        "limit_state.model: a model limit state needs a PFEM evaluator: use "
+        "make_limit_state(problem, EvaluatorOptions) of clients/reliability/model_limit_state.h "
+        "(library pfem_reliability_model)");
   }
   return std::make_unique<ExpressionLimitState>(problem.expression, problem.names);
 }

@@ -17,6 +17,11 @@
 
 namespace pfem::reliability {
 
+// The field error of a protobuf JSON parser message:
+// "(variables[1]) foo: Cannot find field." -> {"variables[1].foo", "unknown field"};
+// "(variables[0].mean): invalid value ..." -> {"variables[0].mean", "invalid value ..."}.
+FieldError json_error(const std::string& status_message);
+
 // Parses proto3 JSON (unknown fields are errors). Throws ProblemError with the field path.
 pfem::v1::ReliabilityProblem parse_problem_json(std::string_view json);
 // Reads and parses a file. Throws ProblemError (also when the file cannot be read).
@@ -34,7 +39,7 @@ struct Problem {
   LimitStateKind limit_state_kind = LimitStateKind::kExpression;
   std::string expression;                    // kExpression
   FormMethod method = FormMethod::kIhlrf;
-  pfem::v1::ReliabilityProblem message;      // the source, for the model limit state later
+  pfem::v1::ReliabilityProblem message;      // the source (the model limit state reads it)
 };
 
 // Every problem of the message, in field order (including expression parse errors with their
@@ -44,8 +49,9 @@ std::vector<FieldError> validate_problem(const pfem::v1::ReliabilityProblem& mes
 // Validates and builds. Throws ProblemError with every error.
 Problem build_problem(const pfem::v1::ReliabilityProblem& message);
 
-// The limit state of a built problem. Throws NotAvailableError for a model limit state
-// (not available yet).
+// The limit state of a built expression problem. Throws NotAvailableError for a model limit
+// state: that one needs the engine or a server, see make_limit_state(problem, EvaluatorOptions)
+// in clients/reliability/model_limit_state.h (library pfem_reliability_model).
 std::unique_ptr<LimitState> make_limit_state(const Problem& problem);
 
 }  // namespace pfem::reliability

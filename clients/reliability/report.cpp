@@ -1,5 +1,7 @@
 #include "clients/reliability/report.h"
 
+#include "clients/reliability/json_writer.h"
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -9,108 +11,6 @@
 namespace pfem::reliability {
 
 namespace {
-
-// A small pretty-printing JSON writer (two-space indent; short arrays of numbers on one line).
-class JsonWriter {
- public:
-  std::string take() { return std::move(out_) + "\n"; }
-
-  JsonWriter& begin_object() { return open('{'); }
-  JsonWriter& end_object() { return close('}'); }
-  JsonWriter& begin_array() { return open('['); }
-  JsonWriter& end_array() { return close(']'); }
-  JsonWriter& key(const std::string& k) {
-    separate();
-    out_ += quote(k) + ": ";
-    after_key_ = true;
-    return *this;
-  }
-  JsonWriter& value(double v) { return raw(number(v)); }
-  JsonWriter& value(long long v) { return raw(std::to_string(v)); }
-  JsonWriter& value(int v) { return raw(std::to_string(v)); }
-  JsonWriter& value(bool v) { return raw(v ? "true" : "false"); }
-  JsonWriter& value(const std::string& v) { return raw(quote(v)); }
-  JsonWriter& value(const char* v) { return raw(quote(v)); }
-  template <class T>
-  JsonWriter& field(const std::string& k, const T& v) {
-    key(k);
-    return value(v);
-  }
-  // An array of numbers on one line.
-  JsonWriter& numbers(const std::string& k, const std::vector<double>& values) {
-    key(k);
-    std::string s = "[";
-    for (std::size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + number(values[i]);
-    return raw(s + "]");
-  }
-
-  static std::string number(double v) {
-    if (!std::isfinite(v)) return "null";
-    char buf[64];
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
-  }
-
- private:
-  static std::string quote(const std::string& s) {
-    std::string q = "\"";
-    for (char c : s) {
-      switch (c) {
-        case '"': q += "\\\""; break;
-        case '\\': q += "\\\\"; break;
-        case '\n': q += "\\n"; break;
-        case '\t': q += "\\t"; break;
-        case '\r': q += "\\r"; break;
-        default:
-          if (static_cast<unsigned char>(c) < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", c);
-            q += buf;
-          } else {
-            q += c;
-          }
-      }
-    }
-    return q + "\"";
-  }
-  void separate() {
-    if (after_key_) {
-      after_key_ = false;
-      return;
-    }
-    if (!first_.empty()) {
-      if (!first_.back()) out_ += ",";
-      first_.back() = false;
-      out_ += '\n';
-      out_.append(2 * first_.size(), ' ');
-    }
-  }
-  JsonWriter& raw(const std::string& s) {
-    separate();
-    out_ += s;
-    return *this;
-  }
-  JsonWriter& open(char c) {
-    separate();
-    out_ += c;
-    first_.push_back(true);
-    return *this;
-  }
-  JsonWriter& close(char c) {
-    const bool empty = first_.back();
-    first_.pop_back();
-    if (!empty) {
-      out_ += '\n';
-      out_.append(2 * first_.size(), ' ');
-    }
-    out_ += c;
-    return *this;
-  }
-
-  std::string out_;
-  std::vector<bool> first_;
-  bool after_key_ = false;
-};
 
 void named_values(JsonWriter& w, const std::string& k, const std::vector<std::string>& names,
                   const Eigen::VectorXd& values) {
@@ -128,6 +28,15 @@ void sampling(JsonWriter& w, const std::string& k, const SamplingResult& s, std:
   w.field("pf", s.pf).field("cov", s.cov).field("beta", s.beta);
   w.field("seed", static_cast<long long>(seed));
   w.end_object();
+}
+
+std::string limit_state_text(const Problem& problem) {
+  if (problem.limit_state_kind != LimitStateKind::kModel) return "expression limit state";
+  const auto& m = problem.message.limit_state().model();
+  std::string text = "model limit state g = " + JsonWriter::number(m.threshold()) + " - " +
+                     m.functional() + "(" + m.recorder();
+  if (m.functional() == "at_time") text += ", t = " + JsonWriter::number(m.time());
+  return text + ")";
 }
 
 std::string fmt(const char* format, double v) {
@@ -200,6 +109,13 @@ std::string result_json(const Problem& problem, const AnalysisResult& result,
     sampling(w, "importance_sampling", *result.importance_sampling, options.seed);
   }
   if (result.monte_carlo) sampling(w, "monte_carlo", *result.monte_carlo, options.seed);
+  if (result.simulations) {
+    const SimulationStats& s = *result.simulations;
+    w.key("simulations").begin_object();
+    w.field("evaluations", s.evaluations).field("gradient_evaluations", s.gradient_evaluations);
+    w.field("runs", s.simulations).field("cached", s.cached).field("seconds", s.seconds);
+    w.end_object();
+  }
   w.field("wall_seconds", result.wall_seconds);
   w.end_object();
   return w.take();
@@ -210,12 +126,19 @@ std::string summary_text(const Problem& problem, const AnalysisResult& result,
   const FormResult& f = result.form;
   std::ostringstream out;
   out << "pfem-form: " << (problem.name.empty() ? "(unnamed problem)" : problem.name) << " - "
-      << problem.names.size() << " variables, expression limit state, method "
+      << problem.names.size() << " variables, " << limit_state_text(problem) << ", method "
       << to_string(f.method) << "\n";
   out << "FORM  " << (f.converged ? "converged" : "NOT CONVERGED") << " after " << f.iterations
       << " iterations, " << f.evaluations << " evaluations of g (gradients: " << f.gradient_source
       << ")\n";
   if (!f.converged) out << "      " << f.message << "\n";
+  if (result.simulations) {
+    const SimulationStats& s = *result.simulations;
+    out << "      " << s.simulations << " PFEM simulations for " << s.evaluations << " evaluations ("
+        << s.gradient_evaluations << " with gradients";
+    if (s.cached > 0) out << ", " << s.cached << " answered from the server's cache";
+    out << "), " << fmt("%.1f", s.seconds) << " s in the simulations\n";
+  }
   out << "      beta = " << fmt("%.6g", f.beta) << "   pf = " << fmt("%.6e", f.pf) << "\n\n";
   char line[256];
   std::snprintf(line, sizeof line, "  %-10s %-16s %11s %11s %12s %9s %8s %12s %12s\n", "variable",

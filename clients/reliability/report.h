@@ -13,6 +13,8 @@
 //   sorm (--sorm):  {valid, message, curvatures: [..], evaluations,
 //                    breitung: {pf, beta}, hohenbichler_rackwitz: {pf, beta}, tvedt: {pf, beta}}
 //   importance_sampling / monte_carlo (on request): {samples, failures, pf, cov, beta, seed}
+//   simulations (model limit states): {evaluations, gradient_evaluations, runs (PFEM runs; FDM:
+//                   2P+1 per gradient), cached (answered from the server's cache), seconds}
 #include <string>
 
 #include "clients/reliability/analysis.h"

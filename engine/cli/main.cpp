@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -31,6 +32,20 @@ const char* kUsage =
 int usage_error(const std::string& message) {
   std::cerr << "pfem: " << message << "\n" << kUsage;
   return 2;
+}
+
+// Runs body; invalid input (ModelError) prints one line per field and gives exit code 2, any
+// other error one line and exit code 1.
+int with_exit_codes(const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const pfem::ModelError& e) {
+    for (const auto& err : e.errors()) std::cerr << err.to_string() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "pfem: " << e.what() << "\n";
+    return 1;
+  }
 }
 
 int validate(const std::vector<std::string>& args) {
@@ -82,7 +97,7 @@ int run(const std::vector<std::string>& args) {
                    p.step, p.total_steps, p.time, p.newton_iterations, p.elapsed_seconds, p.remaining_seconds);
     };
   }
-  try {
+  return with_exit_codes([&] {
     const auto model = pfem::read_model_file(a.positional(0));
     const pfem::RunResult result = pfem::run(model, options);
     if (terminal) std::fprintf(stderr, "\n");
@@ -97,13 +112,7 @@ int run(const std::vector<std::string>& args) {
                 s.response_seconds, s.sensitivity_seconds);
     std::printf("results in %s\n", out_dir.c_str());
     return 0;
-  } catch (const pfem::ModelError& e) {
-    for (const auto& err : e.errors()) std::cerr << err.to_string() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "pfem: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
 
 // Runs DDM, DDM without H and T, and central FDM; prints one row per recorder and parameter.
@@ -122,7 +131,7 @@ int check_gradients(const std::vector<std::string>& args) {
   } catch (const std::invalid_argument& e) {
     return usage_error(e.what());
   }
-  try {
+  return with_exit_codes([&] {
     const auto model = pfem::read_model_file(a.positional(0));
     const pfem::GradientCheck check = pfem::check_gradients(model, options, true);
     for (const auto* s : {&check.ddm, &check.fdm}) {
@@ -146,13 +155,7 @@ int check_gradients(const std::vector<std::string>& args) {
     }
     std::printf("DDM within %g of FDM: %s\n", tolerance, pass ? "yes" : "NO");
     return pass ? 0 : 1;
-  } catch (const pfem::ModelError& e) {
-    for (const auto& err : e.errors()) std::cerr << err.to_string() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "pfem: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
 
 }  // namespace

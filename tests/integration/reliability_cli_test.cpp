@@ -124,16 +124,55 @@ TEST(ReliabilityCli, MethodsAgreeOnTheIssueExample) {
   EXPECT_NEAR(betas[2], betas[0], 1e-5);
 }
 
-TEST(ReliabilityCli, ModelLimitStateIsNotAvailableYet) {
-  const fs::path dir = scratch("model");
-  const CliRun run = pfem_form(example("model_limit_state.json") + " --out " + dir.string() +
-                                " --server 127.0.0.1:1",
-                            dir);
+TEST(ReliabilityCli, ModelLimitStateConvergesWithDdmAndFdm) {
+  // examples/reliability/model_limit_state.json: a tiny PFEM model (about 0.05 s a run).
+  double betas[2];
+  long long runs[2];
+  const char* flags[] = {"", " --gradients fdm"};
+  for (int i = 0; i < 2; ++i) {
+    const fs::path dir = scratch(i == 0 ? "model_ddm" : "model_fdm");
+    const CliRun run = pfem_form(example("model_limit_state.json") + " --out " + dir.string() +
+                                     flags[i],
+                                 dir);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.out.find("model limit state g = 0.0016 - max_abs(tip_ux)"), std::string::npos)
+        << run.out;
+    const Struct r = read_result(dir);
+    EXPECT_TRUE(r.fields().at("converged").bool_value());
+    EXPECT_EQ(r.fields().at("gradient_source").string_value(),
+              i == 0 ? "DDM, in-process" : "FDM (central, 2P+1 runs, eps 1e-07), in-process");
+    betas[i] = number(r, "beta");
+    const Struct& sims = object(r, "simulations");
+    runs[i] = static_cast<long long>(number(sims, "runs"));
+    // Every evaluation of the iHLRF carries a gradient: DDM one run each, FDM 2P + 1 = 5.
+    EXPECT_EQ(runs[i], (i == 0 ? 1 : 5) * static_cast<long long>(number(r, "evaluations")));
+  }
+  EXPECT_NEAR(betas[0], 1.7677, 1e-3);
+  EXPECT_NEAR(betas[1], betas[0], 1e-5);
+}
+
+TEST(ReliabilityCli, ModelLimitStateErrors) {
+  const fs::path dir = scratch("model_errors");
+  // No server listening: exit code 1 with gRPC's reason.
+  CliRun run = pfem_form(example("model_limit_state.json") + " --out " + dir.string() +
+                             " --server 127.0.0.1:1",
+                         dir);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("pfem-form: the limit state failed: server 127.0.0.1:1: UNAVAILABLE"),
+            std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(dir / "result.json"));
+  run = pfem_form(example("model_limit_state.json") + " --out " + dir.string() +
+                      " --gradients adjoint --t-end -1",
+                  dir);
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_EQ(run.err,
-            "limit_state.model: model limit states (PFEM simulations) are not available yet in "
-            "pfem-form; use an \"expression\" limit state\n");
-  EXPECT_FALSE(fs::exists(dir / "result.json"));
+            "--gradients: unknown method 'adjoint' (expected ddm or fdm)\n"
+            "--t-end: must be > 0\n");
+  run = pfem_form(example("example.json") + " --out " + dir.string() + " --server 127.0.0.1:1",
+                  dir);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.err, "--server: only used with a model limit state\n");
 }
 
 TEST(ReliabilityCli, BadProblemGivesOneLinePerErrorAndExitCode2) {

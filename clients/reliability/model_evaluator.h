@@ -1,0 +1,102 @@
+#pragma once
+// Functionals of a PFEM model's recorders and their gradients with respect to named model
+// parameters, for the reliability and optimisation drivers. Two ways to get them, behind one
+// interface:
+//   in-process   pfem::run (engine/analysis/run.h) + pfem::evaluate_functional
+//                (server/functional.h, library pfem_functional: the same code the server uses)
+//   --server     the gRPC Evaluate of a pfem-server (model stored once with PutModel)
+// Gradients by DDM (one run with the sensitivity solve) or by the engine's central finite
+// differences (FDM: 2P + 1 runs for P parameters); value-only calls run once without sensitivities.
+#include <atomic>
+#include <memory>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "clients/reliability/simulation_stats.h"
+#include "pfem/v1/model.pb.h"
+#include "server/functional.h"
+
+namespace pfem::reliability {
+
+enum class GradientMethod { kDdm, kFdm };
+std::optional<GradientMethod> parse_gradient_method(std::string_view name);  // "ddm", "fdm"
+std::string_view to_string(GradientMethod method);
+
+// "at_time" (also "value_at", "at"), "max", "min", "max_abs", "final"; nullopt otherwise.
+std::optional<FunctionalKind> parse_functional_name(std::string_view name);
+
+struct EvaluatorOptions {
+  std::string server;           // HOST:PORT of a pfem-server; empty: run in-process
+  std::string token;            // bearer token for the server (empty: none)
+  GradientMethod gradients = GradientMethod::kDdm;
+  double fdm_eps = 1e-7;        // relative step of the FDM
+  std::optional<double> t_end;  // overrides the model's analysis.t_end
+  int threads = 1;              // in-process: threads for the element loops
+  double timeout_seconds = 3600.0;  // --server: deadline of one Evaluate call
+};
+
+// A failed evaluation: the simulation failed (the engine's message, with step and time), the
+// parameter values are invalid for the model, or the server could not answer.
+class ModelEvaluationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ModelEvaluation {
+  std::vector<FunctionalValue> values;  // one per functional; gradient in `params` order
+  int steps = 0;                        // steps of the run
+  bool cached = false;                  // --server: from the server's cache
+};
+
+class ModelEvaluator {
+ public:
+  virtual ~ModelEvaluator() = default;
+  // Sets the named model parameters to `values` (same order), runs, and evaluates the
+  // functionals; with `gradient`, also d functional / d params[k]. Throws
+  // ModelEvaluationError. Safe to call from several threads at once.
+  virtual ModelEvaluation evaluate(const std::vector<std::string>& params,
+                                   std::span<const double> values,
+                                   const std::vector<FunctionalSpec>& functionals,
+                                   bool gradient) const = 0;
+  // "in-process" or "server HOST:PORT".
+  virtual std::string where() const = 0;
+  GradientMethod gradient_method() const { return options_.gradients; }
+  // e.g. "DDM (in-process)" or "FDM (central, 2P+1 runs; server 127.0.0.1:50051)".
+  std::string gradient_source() const;
+  SimulationStats stats() const;
+  const EvaluatorOptions& options() const { return options_; }
+  const pfem::v1::Model& model() const { return model_; }
+
+ protected:
+  ModelEvaluator(pfem::v1::Model model, EvaluatorOptions options)
+      : model_(std::move(model)), options_(std::move(options)) {}
+  void count(bool gradient, std::size_t params, bool cached, double seconds) const;
+
+  pfem::v1::Model model_;
+  EvaluatorOptions options_;
+
+ private:
+  mutable std::atomic<long long> evaluations_{0}, gradients_{0}, simulations_{0}, cached_{0};
+  mutable std::atomic<long long> microseconds_{0};
+};
+
+// Checks the model (its own validation, and, with a server, the server's ValidateModel and
+// PutModel) and returns the evaluator. Throws ModelEvaluationError naming every problem
+// (field paths of the model, e.g. "structure.materials[0].fy: must be > 0") or the server's
+// answer (e.g. "UNAVAILABLE: ..."); `path` prefixes the model's field paths.
+std::unique_ptr<ModelEvaluator> make_evaluator(const pfem::v1::Model& model,
+                                               const EvaluatorOptions& options,
+                                               const std::string& path = "model");
+
+// Names of the model's parameters and recorders (for validation by the drivers).
+std::vector<std::string> model_parameter_names(const pfem::v1::Model& model);
+std::vector<std::string> model_recorder_names(const pfem::v1::Model& model);
+// The value a parameter has in the model: its `value`, or else the value of its first target
+// as the model file gives it. nullopt when the target is not found.
+std::optional<double> model_parameter_value(const pfem::v1::Model& model, const std::string& name);
+
+}  // namespace pfem::reliability

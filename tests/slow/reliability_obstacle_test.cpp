@@ -1,0 +1,30 @@
+// FORM on examples/reliability/dam-break-obstacle.json (the paper's yielding obstacle to
+// 0.3 s, E and Fy lognormal, g = 0.072 m - max |tip_ux|) in-process with DDM gradients: it
+// converges to the design point found through a pfem-server (README, "Reliability of a PFEM
+// model"). About 10 simulations of ~25 s each.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "clients/reliability/analysis.h"
+#include "clients/reliability/model_limit_state.h"
+#include "clients/reliability/problem_io.h"
+
+namespace rel = pfem::reliability;
+
+TEST(ReliabilityObstacle, FormWithDdmConverges) {
+  const rel::Problem p = rel::build_problem(rel::read_problem_file(
+      std::string(PFEM_SOURCE_DIR) + "/examples/reliability/dam-break-obstacle.json"));
+  const auto g = rel::make_limit_state(p, rel::EvaluatorOptions{});
+  const rel::AnalysisOptions o = rel::analysis_options(p);
+  const rel::AnalysisResult r = rel::analyze(p, *g, o);
+  std::printf("beta %.5f pf %.4e x* = (E %.6g, Fy %.6g), %d iterations, %lld simulations, %.0f s\n",
+              r.form.beta, r.form.pf, r.form.x(0), r.form.x(1), r.form.iterations,
+              r.simulations->simulations, r.wall_seconds);
+  ASSERT_TRUE(r.form.converged) << r.form.message;
+  EXPECT_NEAR(r.form.beta, 3.65, 0.05);
+  // The yield stress drives the peak deflection: a weaker obstacle at the design point.
+  EXPECT_LT(r.form.x(1), 5e4);
+  EXPECT_GT(std::abs(r.form.alpha(1)), std::abs(r.form.alpha(0)));
+  EXPECT_EQ(r.simulations->simulations, r.form.evaluations);  // DDM: one run per evaluation
+}
