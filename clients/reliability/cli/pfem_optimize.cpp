@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "clients/cli/client.h"
+#include "engine/cli/arguments.h"
 #include "clients/reliability/optimize.h"
 
 namespace opt = pfem::optimize;
@@ -48,28 +49,6 @@ constexpr const char* kUsage =
   std::exit(2);
 }
 
-double parse_double(const std::string& flag, const std::string& text) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used != text.size()) throw std::invalid_argument("trailing");
-    return v;
-  } catch (const std::exception&) {
-    usage_error(flag + ": '" + text + "' is not a valid number");
-  }
-}
-
-int parse_int(const std::string& flag, const std::string& text) {
-  try {
-    std::size_t used = 0;
-    const int v = std::stoi(text, &used);
-    if (used != text.size()) throw std::invalid_argument("trailing");
-    return v;
-  } catch (const std::exception&) {
-    usage_error(flag + ": '" + text + "' is not a valid integer");
-  }
-}
-
 void print_errors(const std::vector<rel::FieldError>& errors) {
   for (const auto& e : errors) std::cerr << e.to_string() << "\n";
 }
@@ -77,47 +56,32 @@ void print_errors(const std::vector<rel::FieldError>& errors) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  for (const auto& arg : args)
+    if (arg == "-h" || arg == "--help") {
+      std::cout << kUsage;
+      return 0;
+    }
+  pfem::cli::Arguments cli(args);
   std::string problem_file, out, server, token_file;
   std::optional<std::string> gradients, algorithm;
   std::optional<double> fdm_eps, t_end;
   std::optional<int> max_evaluations, threads;
-  const std::vector<std::string> args(argv + 1, argv + argc);
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    auto next = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) usage_error(arg + " needs a value");
-      return args[++i];
-    };
-    if (arg == "-h" || arg == "--help") {
-      std::cout << kUsage;
-      return 0;
-    } else if (arg == "--out") {
-      out = next();
-    } else if (arg == "--server") {
-      server = next();
-    } else if (arg == "--token-file") {
-      token_file = next();
-    } else if (arg == "--gradients") {
-      gradients = next();
-    } else if (arg == "--fdm-eps") {
-      fdm_eps = parse_double(arg, next());
-    } else if (arg == "--algorithm") {
-      algorithm = next();
-    } else if (arg == "--max-evaluations") {
-      max_evaluations = parse_int(arg, next());
-    } else if (arg == "--t-end") {
-      t_end = parse_double(arg, next());
-    } else if (arg == "--threads") {
-      threads = parse_int(arg, next());
-    } else if (arg.size() > 1 && arg[0] == '-') {
-      usage_error("unknown option " + arg);
-    } else if (problem_file.empty()) {
-      problem_file = arg;
-    } else {
-      usage_error("more than one problem file given ('" + problem_file + "', '" + arg + "')");
-    }
+  try {
+    out = cli.take_string("--out").value_or("");
+    server = cli.take_string("--server").value_or("");
+    token_file = cli.take_string("--token-file").value_or("");
+    gradients = cli.take_string("--gradients");
+    fdm_eps = cli.take_double("--fdm-eps");
+    algorithm = cli.take_string("--algorithm");
+    max_evaluations = cli.take_int("--max-evaluations");
+    t_end = cli.take_double("--t-end");
+    threads = cli.take_int("--threads");
+    cli.expect_done(1);
+    problem_file = cli.positional(0);
+  } catch (const std::invalid_argument& e) {
+    usage_error(e.what());
   }
-  if (problem_file.empty()) usage_error("no problem file given");
   if (out.empty()) usage_error("--out DIR is required");
   if (!token_file.empty() && server.empty()) usage_error("--token-file needs --server");
 
