@@ -29,6 +29,25 @@ std::string submit(pfem::v1::GradientService::Stub& stub, const pfem::v1::Submit
   return response.job_id();
 }
 
+pfem::v1::Result fetch(pfem::v1::GradientService::Stub& stub, const pfem::server::Server& server,
+                       const std::string& id) {
+  pfem::v1::Result result;
+  pfem::client::ConnectionOptions connection;
+  connection.server = server.address();
+  EXPECT_TRUE(pfem::client::fetch_result(stub, connection, id, &result).ok());
+  return result;
+}
+
+// tiny_request's run in process (rho_f = 1010), as the service returns it.
+pfem::v1::Result run_in_process(pfem::SensitivityMethod method, std::vector<std::string> params = {}) {
+  pfem::v1::Model model = tiny_model();
+  model.mutable_parameters(0)->set_value(1010.0);
+  pfem::RunOptions options;
+  options.sensitivity = method;
+  options.params = std::move(params);
+  return pfem::server::to_proto(pfem::run(model, options));
+}
+
 TEST(ServiceJobs, SubmitWatchResultMatchesAnInProcessRun) {
   TempDir dir("jobs_roundtrip");
   pfem::server::Server server(local_options(dir.path));
@@ -54,17 +73,9 @@ TEST(ServiceJobs, SubmitWatchResultMatchesAnInProcessRun) {
   EXPECT_EQ(job.attempts(), 1);
   EXPECT_EQ(job.model_name(), "tiny");
 
-  pfem::v1::Result result;
-  pfem::client::ConnectionOptions connection;
-  connection.server = server.address();
-  ASSERT_TRUE(pfem::client::fetch_result(*stub, connection, id, &result).ok());
-
+  const pfem::v1::Result result = fetch(*stub, server, id);
   // The same run in process, bit for bit.
-  pfem::v1::Model model = tiny_model();
-  model.mutable_parameters(0)->set_value(1010.0);
-  pfem::RunOptions options;
-  options.sensitivity = pfem::SensitivityMethod::kFdm;
-  const auto expected = pfem::server::to_proto(pfem::run(model, options));
+  const auto expected = run_in_process(pfem::SensitivityMethod::kFdm);
   EXPECT_EQ(result.responses().SerializeAsString(), expected.responses().SerializeAsString());
   EXPECT_EQ(result.sensitivities().SerializeAsString(),
             expected.sensitivities().SerializeAsString());
@@ -89,17 +100,8 @@ TEST(ServiceJobs, SubmitWatchResultWithDdmReturnsTheSensitivityHistories) {
   const auto job = wait_for_state(*stub, id, pfem::v1::JOB_STATE_SUCCEEDED);
   ASSERT_EQ(job.state(), pfem::v1::JOB_STATE_SUCCEEDED) << job.error().message();
 
-  pfem::v1::Result result;
-  pfem::client::ConnectionOptions connection;
-  connection.server = server.address();
-  ASSERT_TRUE(pfem::client::fetch_result(*stub, connection, id, &result).ok());
-
-  pfem::v1::Model model = tiny_model();
-  model.mutable_parameters(0)->set_value(1010.0);
-  pfem::RunOptions options;
-  options.sensitivity = pfem::SensitivityMethod::kDdm;
-  options.params = {"rho_f"};
-  const auto expected = pfem::server::to_proto(pfem::run(model, options));
+  const pfem::v1::Result result = fetch(*stub, server, id);
+  const auto expected = run_in_process(pfem::SensitivityMethod::kDdm, {"rho_f"});
   EXPECT_EQ(result.summary().sensitivity_method(), "ddm");
   ASSERT_EQ(result.summary().parameters_size(), 1);
   EXPECT_EQ(result.summary().parameters(0), "rho_f");
@@ -143,10 +145,7 @@ TEST(ServiceJobs, LargeResultsStreamInChunksAndReassembleExactly) {
   EXPECT_EQ(values, 4 * rows);  // time + x, time + dx/dp
   EXPECT_EQ(chunks, 4 * 3);     // ceil(150004 / 65536) = 3 slices per column
 
-  pfem::v1::Result result;
-  pfem::client::ConnectionOptions connection;
-  connection.server = server.address();
-  ASSERT_TRUE(pfem::client::fetch_result(*stub, connection, id, &result).ok());
+  const pfem::v1::Result result = fetch(*stub, server, id);
   ASSERT_EQ(result.responses().time_size(), rows);
   ASSERT_EQ(result.sensitivities().columns(0).values_size(), rows);
   EXPECT_EQ(result.responses().columns(0).values(rows - 1), 1.0 + 149999 * 1e-3);
@@ -270,10 +269,7 @@ TEST(ServiceJobs, AFailedSimulationStoresItsErrorAndPartialResult) {
   EXPECT_EQ(job.error().message(), "Newton did not converge");
   EXPECT_EQ(job.error().step(), 7);
   EXPECT_DOUBLE_EQ(job.error().time(), 0.007);
-  pfem::v1::Result result;
-  pfem::client::ConnectionOptions connection;
-  connection.server = server.address();
-  ASSERT_TRUE(pfem::client::fetch_result(*stub, connection, id, &result).ok());
+  const pfem::v1::Result result = fetch(*stub, server, id);
   EXPECT_EQ(result.summary().status(), pfem::v1::RUN_STATUS_FAILED);
   EXPECT_EQ(result.summary().failed_step(), 7);
   EXPECT_EQ(result.responses().time_size(), 7);  // t = 0 and steps 1..6
