@@ -66,7 +66,8 @@ struct RunSummary {
   double assemble_seconds = 0.0;
   double factorize_seconds = 0.0;
   double solve_seconds = 0.0;
-  long newton_iterations = 0;
+  long newton_iterations = 0;  // of every attempt, failed ones before a halving included
+  long factorizations = 0;
   int substeps = 0;         // steps split in halves after a failed Newton solve
   int removed_particles = 0;   // taken out for coming too close to another node
   int inserted_particles = 0;  // added in the middle of stretched edges

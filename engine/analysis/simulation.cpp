@@ -26,34 +26,41 @@ int node_outside(const NodeState& nodes, const Box& domain) {
 // Largest number of halvings of a step whose Newton solve fails (1/16 of dt at most).
 constexpr int kMaxHalvings = 4;
 
+void add_work(RunSummary& sum, const StepReport& r) {
+  sum.newton_iterations += r.iterations;
+  sum.factorizations += r.factorizations;
+  sum.assemble_seconds += r.assemble_seconds;
+  sum.factorize_seconds += r.factorize_seconds;
+  sum.solve_seconds += r.solve_seconds;
+  sum.sensitivity_seconds += r.sensitivity_seconds;
+}
+
 // Advances nodes by dt on mesh; when Newton fails (typically a sliver that inverts within the
-// step), retries as two half steps, remeshing in between. Timings and counts go into sum.
-StepReport advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings settings,
-                            const mesh::RemeshOptions& remesh_options, NodeState& nodes,
-                            const std::atomic<bool>* cancel, RunSummary& sum, int depth = 0) {
+// step), retries as two half steps, remeshing in between. Returns the Newton iterations of the
+// last attempt; the work of every attempt, failed ones included, goes into sum.
+int advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings settings,
+                     const mesh::RemeshOptions& remesh_options, NodeState& nodes,
+                     const std::atomic<bool>* cancel, RunSummary& sum, int depth = 0) {
   try {
-    return step.advance(mesh, settings, nodes, cancel);
+    step.advance(mesh, settings, nodes, cancel);
+    add_work(sum, step.last_report());
+    return step.last_report().iterations;
   } catch (const StepFailure&) {
+    add_work(sum, step.last_report());
     if (depth == kMaxHalvings) throw;
   }
   settings.dt *= 0.5;
-  StepReport total;
+  ++sum.substeps;
+  int iterations = 0;
   for (int half = 0; half < 2; ++half) {
     if (half == 1) {
       const auto t0 = Clock::now();
       mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
       sum.remesh_seconds += since(t0);
     }
-    const StepReport r = advance_adaptive(step, mesh, settings, remesh_options, nodes, cancel, sum, depth + 1);
-    total.iterations += r.iterations;
-    total.factorizations += r.factorizations;
-    total.assemble_seconds += r.assemble_seconds;
-    total.factorize_seconds += r.factorize_seconds;
-    total.solve_seconds += r.solve_seconds;
-    total.sensitivity_seconds += r.sensitivity_seconds;
+    iterations = advance_adaptive(step, mesh, settings, remesh_options, nodes, cancel, sum, depth + 1);
   }
-  ++sum.substeps;
-  return total;
+  return iterations;
 }
 
 // New particles at the middle of the edges that have grown longer than insertion_length*h,
@@ -142,13 +149,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
         mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
         sum.remesh_seconds += since(t0);
       }
-      const StepReport report =
-          advance_adaptive(step, mesh, settings, remesh_options, nodes, options.cancel, sum);
-      sum.newton_iterations += report.iterations;
-      sum.assemble_seconds += report.assemble_seconds;
-      sum.factorize_seconds += report.factorize_seconds;
-      sum.solve_seconds += report.solve_seconds;
-      sum.sensitivity_seconds += report.sensitivity_seconds;
+      const int iterations = advance_adaptive(step, mesh, settings, remesh_options, nodes, options.cancel, sum);
       sum.max_elements = std::max<int>(sum.max_elements, static_cast<int>(mesh.triangles.size()));
       sum.steps = n;
       if (const int i = node_outside(nodes, problem.domain); i >= 0) {
@@ -168,7 +169,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
         pr.total_steps = total_steps;
         pr.time = time;
         pr.t_end = problem.t_end;
-        pr.newton_iterations = report.iterations;
+        pr.newton_iterations = iterations;
         pr.elapsed_seconds = since(start);
         pr.remaining_seconds = pr.elapsed_seconds / n * (total_steps - n);
         options.progress(pr);

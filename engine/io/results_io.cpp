@@ -60,6 +60,7 @@ std::string summary_json(const RunSummary& s) {
     << "  \"factorize_seconds\": " << number(s.factorize_seconds) << ",\n"
     << "  \"solve_seconds\": " << number(s.solve_seconds) << ",\n"
     << "  \"newton_iterations\": " << s.newton_iterations << ",\n"
+    << "  \"factorizations\": " << s.factorizations << ",\n"
     << "  \"substeps\": " << s.substeps << ",\n"
     << "  \"removed_particles\": " << s.removed_particles << ",\n"
     << "  \"inserted_particles\": " << s.inserted_particles << ",\n"

@@ -364,7 +364,8 @@ void UnifiedStep::move_free_particles(const mesh::FluidMesh& mesh, const StepSet
 
 StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes,
                                 const std::atomic<bool>* cancel) {
-  StepReport report;
+  report_ = StepReport{};
+  StepReport& report = report_;
   xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy, pn_ = nodes.p;
   if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
   number_unknowns(mesh, nodes, s);

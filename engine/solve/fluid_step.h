@@ -104,6 +104,8 @@ class UnifiedStep {
   // fall freely. Throws StepFailure or StepCancelled (nodes are then left unchanged).
   StepReport advance(const mesh::FluidMesh& mesh, const StepSettings& settings, NodeState& nodes,
                      const std::atomic<bool>* cancel = nullptr);
+  // The report of the last call, also when it threw (the work of a failed attempt).
+  const StepReport& last_report() const { return report_; }
 
  private:
   // Per element, from a condensed factorisation: the bubble block inverse and
@@ -162,6 +164,7 @@ class UnifiedStep {
   void correct_condensed_bubble(const mesh::FluidMesh& mesh);
 
   // Per step.
+  StepReport report_;
   std::vector<int> vx_dof_, vy_dof_;  // per node: velocity unknowns or -1 (fixed, not active)
   std::vector<int> s_dof_;            // per structure dof (3 per structure node): unknown or -1
   Eigen::VectorXd s_un_, s_vn_;       // structure displacements and velocities at t_n
