@@ -165,7 +165,7 @@ void UnifiedStep::factorize_global_bubble(const mesh::FluidMesh& mesh, const Ste
         if (const int q = pdof_[tri[a]]; q >= 0) gt.emplace_back(dof[r], q, m.G(r, a));
     }
   }
-  add_structure_tangent(s, kt);
+  add_structure_tangent(s, [&kt](int row, int col, double value) { kt.emplace_back(row, col, value); });
   SparseMatrix kvv(n_v_, n_v_);
   kvv.setFromTriplets(kt.begin(), kt.end());
   g_.resize(n_v_, n_p_);
@@ -190,7 +190,13 @@ void UnifiedStep::condensed_triplets(const mesh::FluidMesh& mesh, const StepSett
                                      std::vector<Eigen::Triplet<double>>& t) const {
   const int ne = static_cast<int>(mesh.triangles.size());
   bubbles.resize(ne);
-  t.reserve(t.size() + 81 * ne + n_p_);
+  // The response's matrix is symmetric and its solver reads the lower triangle only: half the
+  // entries to sort and store. The DDM's Jacobian (with H and T) is not symmetric.
+  const bool lower_only = geometric == nullptr;
+  const auto put = [&t, lower_only](int row, int col, double value) {
+    if (!lower_only || row >= col) t.emplace_back(row, col, value);
+  };
+  t.reserve(t.size() + (lower_only ? 45 : 81) * ne + n_p_);
   const double inv_dt = 1.0 / s.dt;
   for (int e = 0; e < ne; ++e) {
     const auto& m = mats_[e];
@@ -226,16 +232,16 @@ void UnifiedStep::condensed_triplets(const mesh::FluidMesh& mesh, const StepSett
     for (int r = 0; r < 6; ++r) {
       if (dof[r] < 0) continue;
       for (int c = 0; c < 6; ++c)
-        if (dof[c] >= 0) t.emplace_back(dof[r], dof[c], ac(r, c));
+        if (dof[c] >= 0) put(dof[r], dof[c], ac(r, c));
       for (int k = 0; k < 3; ++k)
-        if (pdof[k] >= 0) t.emplace_back(dof[r], pdof[k], -gc(r, k)), t.emplace_back(pdof[k], dof[r], -qc(k, r));
+        if (pdof[k] >= 0) put(dof[r], pdof[k], -gc(r, k)), put(pdof[k], dof[r], -qc(k, r));
     }
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c)
-        if (pdof[r] >= 0 && pdof[c] >= 0) t.emplace_back(pdof[r], pdof[c], -cp(r, c));
+        if (pdof[r] >= 0 && pdof[c] >= 0) put(pdof[r], pdof[c], -cp(r, c));
   }
-  for (int q = 0; q < n_p_; ++q) t.emplace_back(n_node_v_ + q, n_node_v_ + q, -mp_[q] * inv_dt);
-  add_structure_tangent(s, t);
+  for (int q = 0; q < n_p_; ++q) put(n_node_v_ + q, n_node_v_ + q, -mp_[q] * inv_dt);
+  add_structure_tangent(s, put);
 }
 
 void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze) {
@@ -316,11 +322,11 @@ void UnifiedStep::structure_residual(const StepSettings& s) {
     if (s_dof_[j] >= 0) rv_[s_dof_[j]] += r[j];
 }
 
-void UnifiedStep::add_structure_tangent(const StepSettings& s, std::vector<Eigen::Triplet<double>>& t) const {
+void UnifiedStep::add_structure_tangent(const StepSettings& s, const structure::AddEntry& put) const {
   const auto* model = s.structure.model;
   if (!model) return;
   const structure::AddEntry add = [&](int row, int col, double value) {
-    if (s_dof_[row] >= 0 && s_dof_[col] >= 0) t.emplace_back(s_dof_[row], s_dof_[col], value);
+    if (s_dof_[row] >= 0 && s_dof_[col] >= 0) put(s_dof_[row], s_dof_[col], value);
   };
   model->add_mass(add, 1.0 / s.dt);
   model->add_damping(add, 1.0);

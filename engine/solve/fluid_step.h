@@ -121,7 +121,7 @@ class UnifiedStep {
   // The structure's velocities, displacements at the iterate, and its residual rows added to rv_.
   void structure_residual(const StepSettings& s);
   // Entries of M/dt + C + dt dFs/du at the structure's unknowns.
-  void add_structure_tangent(const StepSettings& s, std::vector<Eigen::Triplet<double>>& t) const;
+  void add_structure_tangent(const StepSettings& s, const structure::AddEntry& put) const;
   void element_matrices(const mesh::FluidMesh& mesh, const StepSettings& s);
   fluid::ElementState element_state(const mesh::FluidMesh& mesh, int e) const;
   // Residuals rv, rp (and the assembled Mp) at the current iterate.
@@ -129,8 +129,8 @@ class UnifiedStep {
   // Assemble and factorise the Newton matrix of the chosen formulation at the current iterate.
   void factorize_global_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
   void factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
-  // Triplets of the bubble-condensed [v; p] matrix (pressure rows negated) and each element's
-  // condensation. With geometric derivatives (the DDM) it is the exact Jacobian, dt H and dt T
+  // Triplets of the bubble-condensed [v; p] matrix (pressure rows negated; its lower triangle
+  // when symmetric, without geometric derivatives) and each element's condensation. With geometric derivatives (the DDM) it is the exact Jacobian, dt H and dt T
   // included, and no longer symmetric.
   void condensed_triplets(const mesh::FluidMesh& mesh, const StepSettings& s,
                           const std::vector<fluid::GeometricDerivatives>* geometric,
