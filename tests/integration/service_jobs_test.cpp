@@ -183,6 +183,14 @@ TEST(ServiceJobs, CancelFailTimeoutAndQueueLimit) {
     ASSERT_TRUE(stub->CancelJob(&c, cancel, &job).ok());
     EXPECT_EQ(job.state(), pfem::v1::JOB_STATE_CANCELLED);
   }
+  // Cancelled only once it has recorded a step (else it would stop before its first one).
+  for (int polls = 0; polls < 3000 && job.progress().step() < 1; ++polls) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    grpc::ClientContext c;
+    pfem::v1::JobRequest get;
+    get.set_job_id(running);
+    ASSERT_TRUE(stub->GetJob(&c, get, &job).ok());
+  }
   cancel.set_job_id(running);
   {
     grpc::ClientContext c;
