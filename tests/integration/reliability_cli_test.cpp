@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace fs = std::filesystem;
 using google::protobuf::Struct;
@@ -196,4 +197,37 @@ TEST(ReliabilityCli, BadProblemGivesOneLinePerErrorAndExitCode2) {
                                    " --method newton", dir);
   EXPECT_EQ(method.exit_code, 2);
   EXPECT_EQ(method.err, "--method: unknown method 'newton' (expected ihlrf, slsqp or cobyla)\n");
+}
+
+// The command line goes through the shared parser (engine/cli/arguments.h): each mistake gets
+// one line naming the flag, then the usage, and exit code 2; --help prints the usage alone.
+TEST(ReliabilityCli, CommandLineErrorsNameTheFlagAndPrintTheUsage) {
+  const fs::path dir = scratch("usage");
+  const std::string problem = example("example.json");
+  const std::string out = " --out " + dir.string();
+  const std::pair<std::string, std::string> cases[] = {
+      {"", "expected 1 file argument(s), got 0"},
+      {problem + " other.json" + out,
+       "expected 1 file argument(s), got 2: '" + problem + "' 'other.json'"},
+      {problem + out + " --bogus", "unknown option --bogus"},
+      {problem + out + " -x", "unknown option -x"},
+      {problem + " --out", "--out needs a value"},
+      {problem + out + " --sorm --sorm", "--sorm given more than once"},
+      {problem + out + " --seed -3", "--seed: '-3' is not a non-negative integer"},
+      {problem + out + " --monte-carlo 1e4", "--monte-carlo: '1e4' is not an integer"},
+      {problem + out + " --tolerance small", "--tolerance: 'small' is not a number"},
+      {problem + out + " --token-file token", "--token-file needs --server"},
+  };
+  for (const auto& [args, message] : cases) {
+    const CliRun run = pfem_form(args, dir);
+    EXPECT_EQ(run.exit_code, 2) << args;
+    const std::string head = "pfem-form: " + message + "\nusage: pfem-form PROBLEM.json --out DIR";
+    EXPECT_EQ(run.err.rfind(head, 0), 0u) << args << "\n" << run.err;
+    EXPECT_EQ(run.out, "") << args;
+  }
+  EXPECT_FALSE(fs::exists(dir / "result.json"));
+  const CliRun help = pfem_form("--help", dir);
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_EQ(help.out.rfind("usage: pfem-form PROBLEM.json --out DIR", 0), 0u) << help.out;
+  EXPECT_EQ(help.err, "");
 }

@@ -15,13 +15,15 @@
 // 2 bad command line or bad problem (one line per error, naming the field).
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "clients/cli/client.h"
@@ -29,6 +31,7 @@
 #include "clients/reliability/model_limit_state.h"
 #include "clients/reliability/problem_io.h"
 #include "clients/reliability/report.h"
+#include "engine/cli/arguments.h"
 
 namespace rel = pfem::reliability;
 
@@ -55,9 +58,9 @@ struct Args {
   std::string out;
   std::optional<std::string> method;
   bool sorm = false;
-  std::optional<long long> importance_sampling;
-  std::optional<long long> monte_carlo;
-  std::optional<unsigned long long> seed;
+  std::optional<std::int64_t> importance_sampling;
+  std::optional<std::int64_t> monte_carlo;
+  std::optional<std::uint64_t> seed;
   std::optional<int> max_iterations;
   std::optional<double> tolerance;
   std::string server;
@@ -68,82 +71,34 @@ struct Args {
   std::optional<int> threads;
 };
 
-[[noreturn]] void usage_error(const std::string& message) {
+int usage_error(const std::string& message) {
   std::cerr << "pfem-form: " << message << "\n" << kUsage;
-  std::exit(2);
+  return 2;
 }
 
-template <class T>
-T parse_number(const std::string& flag, const std::string& text) {
-  try {
-    std::size_t used = 0;
-    T value;
-    if constexpr (std::is_same_v<T, double>) {
-      value = std::stod(text, &used);
-    } else if constexpr (std::is_same_v<T, unsigned long long>) {
-      if (!text.empty() && text[0] == '-') throw std::invalid_argument("negative");
-      value = std::stoull(text, &used);
-    } else {
-      value = static_cast<T>(std::stoll(text, &used));
-    }
-    if (used != text.size()) throw std::invalid_argument("trailing characters");
-    return value;
-  } catch (const std::exception&) {
-    usage_error(flag + ": '" + text + "' is not a valid number");
-  }
-}
-
-Args parse_args(int argc, char** argv) {
+// Throws std::invalid_argument naming the flag at fault.
+Args parse_args(pfem::cli::Arguments& cli) {
   Args a;
-  std::vector<std::string> args(argv + 1, argv + argc);
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    auto next = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) usage_error(arg + " needs a value");
-      return args[++i];
-    };
-    if (arg == "-h" || arg == "--help") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (arg == "--out") {
-      a.out = next();
-    } else if (arg == "--method") {
-      a.method = next();
-    } else if (arg == "--sorm") {
-      a.sorm = true;
-    } else if (arg == "--importance-sampling") {
-      a.importance_sampling = parse_number<long long>(arg, next());
-    } else if (arg == "--monte-carlo") {
-      a.monte_carlo = parse_number<long long>(arg, next());
-    } else if (arg == "--seed") {
-      a.seed = parse_number<unsigned long long>(arg, next());
-    } else if (arg == "--max-iterations") {
-      a.max_iterations = parse_number<int>(arg, next());
-    } else if (arg == "--tolerance") {
-      a.tolerance = parse_number<double>(arg, next());
-    } else if (arg == "--server") {
-      a.server = next();
-    } else if (arg == "--token-file") {
-      a.token_file = next();
-    } else if (arg == "--gradients") {
-      a.gradients = next();
-    } else if (arg == "--fdm-eps") {
-      a.fdm_eps = parse_number<double>(arg, next());
-    } else if (arg == "--t-end") {
-      a.t_end = parse_number<double>(arg, next());
-    } else if (arg == "--threads") {
-      a.threads = parse_number<int>(arg, next());
-    } else if (arg.size() > 1 && arg[0] == '-') {
-      usage_error("unknown option " + arg);
-    } else if (a.problem.empty()) {
-      a.problem = arg;
-    } else {
-      usage_error("more than one problem file given ('" + a.problem + "', '" + arg + "')");
-    }
+  a.out = cli.take_string("--out").value_or("");
+  a.method = cli.take_string("--method");
+  a.importance_sampling = cli.take_int64("--importance-sampling");
+  a.monte_carlo = cli.take_int64("--monte-carlo");
+  a.seed = cli.take_uint64("--seed");
+  a.max_iterations = cli.take_int("--max-iterations");
+  a.tolerance = cli.take_double("--tolerance");
+  a.server = cli.take_string("--server").value_or("");
+  a.token_file = cli.take_string("--token-file").value_or("");
+  a.gradients = cli.take_string("--gradients");
+  a.fdm_eps = cli.take_double("--fdm-eps");
+  a.t_end = cli.take_double("--t-end");
+  a.threads = cli.take_int("--threads");
+  a.sorm = cli.take_flag("--sorm");
+  cli.expect_done(1);
+  a.problem = cli.positional(0);
+  if (a.out.empty()) throw std::invalid_argument("--out DIR is required");
+  if (!a.token_file.empty() && a.server.empty()) {
+    throw std::invalid_argument("--token-file needs --server");
   }
-  if (a.problem.empty()) usage_error("no problem file given");
-  if (a.out.empty()) usage_error("--out DIR is required");
-  if (!a.token_file.empty() && a.server.empty()) usage_error("--token-file needs --server");
   return a;
 }
 
@@ -154,7 +109,17 @@ void print_errors(const std::vector<rel::FieldError>& errors) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Args args = parse_args(argc, argv);
+  pfem::cli::Arguments cli(std::vector<std::string>(argv + 1, argv + argc));
+  if (cli.take_flag("--help") || cli.take_flag("-h")) {
+    std::cout << kUsage;
+    return 0;
+  }
+  Args args;
+  try {
+    args = parse_args(cli);
+  } catch (const std::invalid_argument& e) {
+    return usage_error(e.what());
+  }
   try {
     const rel::Problem problem = rel::build_problem(rel::read_problem_file(args.problem));
     rel::AnalysisOptions options = rel::analysis_options(problem);
@@ -206,11 +171,10 @@ int main(int argc, char** argv) {
     }
     const bool model = problem.limit_state_kind == rel::LimitStateKind::kModel;
     if (!model) {
-      for (const char* flag : {"--server", "--gradients", "--fdm-eps", "--t-end"}) {
-        const bool given = (std::string(flag) == "--server" && !args.server.empty()) ||
-                           (std::string(flag) == "--gradients" && args.gradients) ||
-                           (std::string(flag) == "--fdm-eps" && args.fdm_eps) ||
-                           (std::string(flag) == "--t-end" && args.t_end);
+      for (const auto& [flag, given] : {std::pair{"--server", !args.server.empty()},
+                                        {"--gradients", args.gradients.has_value()},
+                                        {"--fdm-eps", args.fdm_eps.has_value()},
+                                        {"--t-end", args.t_end.has_value()}}) {
         if (given) errors.push_back({flag, "only used with a model limit state"});
       }
     }
