@@ -256,22 +256,25 @@ void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const 
 void UnifiedStep::solve_condensed(const mesh::FluidMesh& mesh, const std::vector<BubbleCondensation>& bubbles,
                                   const CondensedSolve& solve, const Eigen::MatrixXd& rv, const Eigen::MatrixXd& rp,
                                   Eigen::MatrixXd& dv, Eigen::MatrixXd& dp) const {
-  // Right-hand side with the bubble rows condensed in; pressure rows negated.
+  // Column by column with fixed-size element blocks (small dynamic products cost more than
+  // their arithmetic). Right-hand side with the bubble rows condensed in; pressure rows negated.
   const long cols = rv.cols();
+  const int ne = static_cast<int>(mesh.triangles.size());
   Eigen::MatrixXd rhs(n_node_v_ + n_p_, cols);
   rhs.topRows(n_node_v_) = rv.topRows(n_node_v_);
   rhs.bottomRows(n_p_) = -rp;
-  const int ne = static_cast<int>(mesh.triangles.size());
   Eigen::MatrixXd z(2 * ne, cols);  // Abb^-1 r_b, two rows per element
-  for (int e = 0; e < ne; ++e) {
-    const auto& b = bubbles[e];
-    const auto ze = z.middleRows<2>(2 * e);
-    z.middleRows<2>(2 * e).noalias() = b.inv_bb * rv.middleRows<2>(n_node_v_ + 2 * e);
-    const auto& tri = mesh.triangles[e];
-    for (int k = 0; k < 3; ++k) {
-      if (const int dx = vx_dof_[tri[k]]; dx >= 0) rhs.row(dx).noalias() -= b.a_cb.row(2 * k) * ze;
-      if (const int dy = vy_dof_[tri[k]]; dy >= 0) rhs.row(dy).noalias() -= b.a_cb.row(2 * k + 1) * ze;
-      if (const int q = pdof_[tri[k]]; q >= 0) rhs.row(n_node_v_ + q).noalias() += b.g_b.col(k).transpose() * ze;
+  for (long c = 0; c < cols; ++c) {
+    for (int e = 0; e < ne; ++e) {
+      const auto& b = bubbles[e];
+      const Eigen::Vector2d ze = b.inv_bb * rv.col(c).segment<2>(n_node_v_ + 2 * e);
+      z.col(c).segment<2>(2 * e) = ze;
+      const auto& tri = mesh.triangles[e];
+      for (int k = 0; k < 3; ++k) {
+        if (const int dx = vx_dof_[tri[k]]; dx >= 0) rhs(dx, c) -= b.a_cb.row(2 * k).dot(ze);
+        if (const int dy = vy_dof_[tri[k]]; dy >= 0) rhs(dy, c) -= b.a_cb.row(2 * k + 1).dot(ze);
+        if (const int q = pdof_[tri[k]]; q >= 0) rhs(n_node_v_ + q, c) += b.g_b.col(k).dot(ze);
+      }
     }
   }
   const Eigen::MatrixXd x = solve(rhs);
@@ -279,22 +282,20 @@ void UnifiedStep::solve_condensed(const mesh::FluidMesh& mesh, const std::vector
   dv.topRows(n_node_v_) = x.topRows(n_node_v_);
   dp = x.bottomRows(n_p_);
   // Recover each bubble: dvb = Abb^-1 (r_b - A_bc dvc + G_b dp).
-  Eigen::Matrix<double, 6, Eigen::Dynamic> dvc(6, cols);
-  Eigen::Matrix<double, 3, Eigen::Dynamic> dpe(3, cols);
-  Eigen::Matrix<double, 2, Eigen::Dynamic> coupling(2, cols);
-  for (int e = 0; e < ne; ++e) {
-    const auto& b = bubbles[e];
-    const auto& tri = mesh.triangles[e];
-    for (int k = 0; k < 3; ++k) {
-      const int dx = vx_dof_[tri[k]], dy = vy_dof_[tri[k]], q = pdof_[tri[k]];
-      if (dx >= 0) dvc.row(2 * k) = x.row(dx); else dvc.row(2 * k).setZero();
-      if (dy >= 0) dvc.row(2 * k + 1) = x.row(dy); else dvc.row(2 * k + 1).setZero();
-      if (q >= 0) dpe.row(k) = x.row(n_node_v_ + q); else dpe.row(k).setZero();
+  for (long c = 0; c < cols; ++c) {
+    for (int e = 0; e < ne; ++e) {
+      const auto& b = bubbles[e];
+      const auto& tri = mesh.triangles[e];
+      Eigen::Matrix<double, 6, 1> dvc;
+      Eigen::Vector3d dpe;
+      for (int k = 0; k < 3; ++k) {
+        const int dx = vx_dof_[tri[k]], dy = vy_dof_[tri[k]], q = pdof_[tri[k]];
+        dvc(2 * k) = dx >= 0 ? x(dx, c) : 0.0;
+        dvc(2 * k + 1) = dy >= 0 ? x(dy, c) : 0.0;
+        dpe(k) = q >= 0 ? x(n_node_v_ + q, c) : 0.0;
+      }
+      dv.col(c).segment<2>(n_node_v_ + 2 * e) = z.col(c).segment<2>(2 * e) + b.inv_bb * (b.g_b * dpe - b.a_bc * dvc);
     }
-    coupling.noalias() = b.g_b * dpe;
-    coupling.noalias() -= b.a_bc * dvc;
-    dv.middleRows<2>(n_node_v_ + 2 * e) = z.middleRows<2>(2 * e);
-    dv.middleRows<2>(n_node_v_ + 2 * e).noalias() += b.inv_bb * coupling;
   }
 }
 
