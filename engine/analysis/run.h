@@ -69,7 +69,7 @@ struct RunSummary {
   long newton_iterations = 0;  // of every attempt, failed ones before a halving included
   long factorizations = 0;
   int substeps = 0;         // steps split in halves after a failed Newton solve
-  int removed_particles = 0;   // taken out for coming too close to another node
+  int removed_particles = 0;   // taken out for coming too close to another node, or for crossing a wall
   int inserted_particles = 0;  // added in the middle of stretched edges
   int particles = 0;
   int max_elements = 0;

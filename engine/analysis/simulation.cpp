@@ -33,14 +33,17 @@ void add_work(RunSummary& sum, const StepReport& r) {
   sum.factorize_seconds += r.factorize_seconds;
   sum.solve_seconds += r.solve_seconds;
   sum.sensitivity_seconds += r.sensitivity_seconds;
+  sum.removed_particles += r.removed_particles;
 }
 
 // Advances nodes by dt on mesh; when Newton fails (typically a sliver that inverts within the
-// step), retries as two half steps, remeshing in between. Returns the Newton iterations of the
+// step), retries as two half steps, removing too close particles (as between steps; see
+// particle_spacing.h) and remeshing in between. Returns the Newton iterations of the
 // last attempt; the work of every attempt, failed ones included, goes into sum.
 int advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings settings,
                      const mesh::RemeshOptions& remesh_options, NodeState& nodes,
-                     const std::atomic<bool>* cancel, RunSummary& sum, int depth = 0) {
+                     double removal_distance, const std::atomic<bool>* cancel, RunSummary& sum,
+                     int depth = 0) {
   try {
     step.advance(mesh, settings, nodes, cancel);
     add_work(sum, step.last_report());
@@ -55,10 +58,13 @@ int advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings sett
   for (int half = 0; half < 2; ++half) {
     if (half == 1) {
       const auto t0 = Clock::now();
+      // Particles squeezed together in the first half would only come closer in a shorter step.
+      sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind, removal_distance);
       mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
       sum.remesh_seconds += since(t0);
     }
-    iterations = advance_adaptive(step, mesh, settings, remesh_options, nodes, cancel, sum, depth + 1);
+    iterations = advance_adaptive(step, mesh, settings, remesh_options, nodes, removal_distance, cancel, sum,
+                                  depth + 1);
   }
   return iterations;
 }
@@ -149,7 +155,8 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
         mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
         sum.remesh_seconds += since(t0);
       }
-      const int iterations = advance_adaptive(step, mesh, settings, remesh_options, nodes, options.cancel, sum);
+      const int iterations = advance_adaptive(step, mesh, settings, remesh_options, nodes,
+                                              problem.removal_distance * problem.h, options.cancel, sum);
       sum.max_elements = std::max<int>(sum.max_elements, static_cast<int>(mesh.triangles.size()));
       sum.steps = n;
       if (const int i = node_outside(nodes, problem.domain); i >= 0) {

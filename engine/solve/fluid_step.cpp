@@ -334,20 +334,39 @@ void UnifiedStep::add_structure_tangent(const StepSettings& s, const structure::
   model->add_tangent(add, s.dt);  // at the trial state of the last residual
 }
 
-void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s,
-                                   const NodeState& nodes) const {
-  for (const auto& g : geometries_)
-    if (!(g.A > 0.0)) throw StepFailure("a triangle inverted within the step");
-  // Only particles sharing a triangle with a wall node are near enough to cross one.
-  for (const auto& t : mesh.triangles) {
-    const bool by_wall = nodes.kind[t[0]] == mesh::NodeKind::Wall || nodes.kind[t[1]] == mesh::NodeKind::Wall ||
-                         nodes.kind[t[2]] == mesh::NodeKind::Wall;
-    for (int a = 0; by_wall && a < 3; ++a) {
-      const int i = t[a], dx = vx_dof_[i], dy = vy_dof_[i];
-      if (dx >= 0 && dy >= 0 && nodes.kind[i] == mesh::NodeKind::Fluid &&
-          crosses_wall(s, nodes, xn_[i], yn_[i], xn_[i] + s.dt * v_[dx], yn_[i] + s.dt * v_[dy]))
-        throw StepFailure("particle " + std::to_string(i) + " crossed a wall");
+void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
+  // A particle whose move crosses a wall or beam hits it (advance() takes it out): typically a
+  // splash particle reaching the floor or the obstacle's back, in free-surface triangles that
+  // have no pressure to stop it, or in none on that edge at all (the alpha test drops the
+  // sliver it would make). A shorter step only brings it closer. A beam moves within the step:
+  // its piece is tested where it was and where it goes.
+  const auto end_x = [&](int j) { return vx_dof_[j] >= 0 ? xn_[j] + s.dt * v_[vx_dof_[j]] : xn_[j]; };
+  const auto end_y = [&](int j) { return vy_dof_[j] >= 0 ? yn_[j] + s.dt * v_[vy_dof_[j]] : yn_[j]; };
+  const auto crosses = [&](int i) {
+    const double px = xn_[i], py = yn_[i], qx = end_x(i), qy = end_y(i);
+    for (const auto& [a, b] : s.walls) {
+      if (segments_cross(px, py, qx, qy, xn_[a], yn_[a], xn_[b], yn_[b])) return true;
+      const bool moves = vx_dof_[a] >= 0 || vy_dof_[a] >= 0 || vx_dof_[b] >= 0 || vy_dof_[b] >= 0;
+      if (moves && segments_cross(px, py, qx, qy, end_x(a), end_y(a), end_x(b), end_y(b))) return true;
     }
+    return false;
+  };
+  // Only particles sharing a triangle with a wall or structure node are near enough to cross.
+  hits_wall_.assign(nodes.size(), 0);
+  for (const auto& t : mesh.triangles) {
+    const bool by_wall = nodes.kind[t[0]] != mesh::NodeKind::Fluid || nodes.kind[t[1]] != mesh::NodeKind::Fluid ||
+                         nodes.kind[t[2]] != mesh::NodeKind::Fluid;
+    for (int a = 0; by_wall && a < 3; ++a) {
+      const int i = t[a];
+      if (nodes.kind[i] == mesh::NodeKind::Fluid && !hits_wall_[i] && crosses(i)) hits_wall_[i] = 1;
+    }
+  }
+  // An inverted triangle is no solution of the step (retried shorter), unless a particle of it
+  // crossed a wall: that move is not made.
+  for (std::size_t e = 0; e < geometries_.size(); ++e) {
+    const auto& t = mesh.triangles[e];
+    if (!(geometries_[e].A > 0.0) && !hits_wall_[t[0]] && !hits_wall_[t[1]] && !hits_wall_[t[2]])
+      throw StepFailure("a triangle inverted within the step");
   }
 }
 
@@ -480,6 +499,13 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const int dx = vx_dof_[i], dy = vy_dof_[i];
     if (dx < 0 && dy < 0) continue;
+    // A particle that hits a wall is taken out where it was, as one closer to a wall than the
+    // removal distance is between steps (stopped there instead, the jet behind it collides with it).
+    if (hits_wall_[i]) {
+      nodes.kind[i] = mesh::NodeKind::Removed;
+      ++report.removed_particles;
+      continue;
+    }
     nodes.vx[i] = dx >= 0 ? v_[dx] : 0.0, nodes.vy[i] = dy >= 0 ? v_[dy] : 0.0;
     nodes.x[i] = xn_[i] + s.dt * nodes.vx[i];
     nodes.y[i] = yn_[i] + s.dt * nodes.vy[i];

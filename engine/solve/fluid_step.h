@@ -83,6 +83,7 @@ struct StepReport {
   double factorize_seconds = 0.0;
   double solve_seconds = 0.0;
   double sensitivity_seconds = 0.0;
+  int removed_particles = 0;  // that would have crossed a wall or beam
 };
 
 // Thrown when Newton does not converge or produces non-finite values.
@@ -101,7 +102,8 @@ class UnifiedStep {
   UnifiedStep() = default;
 
   // nodes hold x, v, p at t_n on entry and at t_{n+1} on return. Particles outside the mesh
-  // fall freely. Throws StepFailure or StepCancelled (nodes are then left unchanged).
+  // fall freely; a particle that would cross a wall or beam is removed (kind Removed). Throws
+  // StepFailure or StepCancelled (nodes are then left unchanged).
   StepReport advance(const mesh::FluidMesh& mesh, const StepSettings& settings, NodeState& nodes,
                      const std::atomic<bool>* cancel = nullptr);
   // The report of the last call, also when it threw (the work of a failed attempt).
@@ -129,9 +131,9 @@ class UnifiedStep {
   // Assemble and factorise the Newton matrix of the chosen formulation at the current iterate.
   void factorize_global_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
   void factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
-  // Triplets of the bubble-condensed [v; p] matrix (pressure rows negated; its lower triangle
-  // when symmetric, without geometric derivatives) and each element's condensation. With geometric derivatives (the DDM) it is the exact Jacobian, dt H and dt T
-  // included, and no longer symmetric.
+  // Triplets of the bubble-condensed [v; p] matrix (pressure rows negated) and each element's
+  // condensation. Without geometric derivatives it is symmetric and only its lower triangle is
+  // emitted; with them (the DDM) it is the exact Jacobian, dt H and dt T included, in full.
   void condensed_triplets(const mesh::FluidMesh& mesh, const StepSettings& s,
                           const std::vector<fluid::GeometricDerivatives>* geometric,
                           std::vector<BubbleCondensation>& bubbles, std::vector<Eigen::Triplet<double>>& t) const;
@@ -142,9 +144,10 @@ class UnifiedStep {
   void solve_condensed(const mesh::FluidMesh& mesh, const std::vector<BubbleCondensation>& bubbles,
                        const CondensedSolve& solve, const Eigen::MatrixXd& rv, const Eigen::MatrixXd& rp,
                        Eigen::MatrixXd& dv, Eigen::MatrixXd& dp) const;
-  // A converged state with an inverted triangle, or with a particle moved across a wall, is no
-  // solution of the PFEM step: throws StepFailure so that the step is retried shorter.
-  void check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) const;
+  // A converged state with an inverted triangle is no solution of the PFEM step: throws
+  // StepFailure so that the step is retried shorter. A particle whose converged move crosses a
+  // wall or beam is marked in hits_wall_ instead (its triangles may invert): it is removed.
+  void check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
   // Moves the particles outside the mesh ballistically; one whose path crosses a wall stops
   // where it was (it hits the wall and sticks, as water does at a no-slip wall).
   void move_free_particles(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const;
@@ -172,6 +175,7 @@ class UnifiedStep {
   std::vector<int> pdof_;           // per node: pressure unknown or -1
   int n_node_v_ = 0, n_v_ = 0, n_p_ = 0;
   std::vector<double> xn_, yn_, vxn_, vyn_, pn_;  // state at t_n (per node)
+  std::vector<std::uint8_t> hits_wall_;           // per node: hits a wall (check_admissible)
   std::vector<Eigen::Vector2d> vbn_;                // bubble velocities at t_n (per element)
   // Bubble velocities of the last converged step, by the triangle's sorted node triple.
   std::unordered_map<std::uint64_t, Eigen::Vector2d> bubbles_by_triangle_;
