@@ -153,9 +153,10 @@ class UnifiedStep {
   void move_free_particles(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const;
   // The exact Jacobian at the current iterate (engine/solve/step_sensitivity.cpp): H and T per
   // element (kept in geometric_; zero without geometric terms) and the structure's consistent
-  // tangent, condensed, factorised by UMFPACK. (As a Newton matrix it did not pay: the modified
-  // Newton's symmetric factorisation is cheaper than the few iterations it would save.)
-  void factorize_jacobian(const mesh::FluidMesh& mesh, const StepSettings& s, bool geometric_terms);
+  // tangent, condensed like the response's matrix. (As a Newton matrix it did not pay: the
+  // modified Newton's symmetric factorisation is cheaper than the few iterations it would save.)
+  void assemble_jacobian(const mesh::FluidMesh& mesh, const StepSettings& s, bool geometric_terms);
+  void factorize_jacobian();  // UMFPACK, its symbolic analysis reused while the pattern stays
   // The DDM of the converged step: the Jacobian there, factorised once, and one right-hand side
   // per parameter; then the sensitivities committed to the nodes, the bubbles and the structure
   // (before the structure's own commit).
@@ -199,7 +200,7 @@ class UnifiedStep {
   // The exact Jacobian's pieces.
   std::vector<fluid::GeometricDerivatives> geometric_;
   std::vector<BubbleCondensation> jacobian_bubbles_;
-  SparseMatrix jacobian_;
+  SparseMatrix jacobian_, lu_pattern_;  // lu_pattern_: the Jacobian last factorised
   LuSolver jacobian_solver_;
 };
 
