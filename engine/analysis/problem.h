@@ -39,6 +39,8 @@ struct Problem {
   double thickness = 1.0;
   double gx = 0.0, gy = -9.81;
   double h = 0.0, alpha = 1.2;
+  // Alpha for triangles of three nodes on the previous mesh's boundary (mesh::RemeshOptions).
+  double boundary_alpha = 0.9;
   double removal_distance = 0.2;  // relative to h
   double insertion_length = 1.6;  // relative to h
   double dt = 0.0, t_end = 0.0;

@@ -36,6 +36,15 @@ void add_work(RunSummary& sum, const StepReport& r) {
   sum.removed_particles += r.removed_particles;
 }
 
+// Remeshes nodes after the step that used previous (see RemeshOptions::previous_boundary).
+mesh::FluidMesh remesh_after(const mesh::FluidMesh& previous, const NodeState& nodes, mesh::RemeshOptions options) {
+  std::vector<std::uint8_t> boundary(previous.free_surface.size());
+  for (std::size_t i = 0; i < boundary.size(); ++i)
+    boundary[i] = previous.free_surface[i] || (nodes.kind[i] == mesh::NodeKind::Fluid && !previous.in_mesh[i]);
+  options.previous_boundary = boundary;
+  return mesh::remesh(nodes.x, nodes.y, nodes.kind, options);
+}
+
 // Advances nodes by dt on mesh; when Newton fails (typically a sliver that inverts within the
 // step), retries as two half steps, removing too close particles (as between steps; see
 // particle_spacing.h) and remeshing in between. Returns the Newton iterations of the
@@ -60,7 +69,7 @@ int advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings sett
       const auto t0 = Clock::now();
       // Particles squeezed together in the first half would only come closer in a shorter step.
       sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind, removal_distance);
-      mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
+      mesh = remesh_after(mesh, nodes, remesh_options);
       sum.remesh_seconds += since(t0);
     }
     iterations = advance_adaptive(step, mesh, settings, remesh_options, nodes, removal_distance, cancel, sum,
@@ -105,7 +114,8 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   // Walls and beams are constraints of the triangulation: no triangle spans them.
   auto constraints = problem.wall_segments;
   constraints.insert(constraints.end(), problem.beam_segments.begin(), problem.beam_segments.end());
-  const mesh::RemeshOptions remesh_options{problem.h, problem.alpha, problem.gx, problem.gy, constraints};
+  mesh::RemeshOptions remesh_options{problem.h, problem.alpha, problem.gx, problem.gy, constraints};
+  remesh_options.boundary_alpha = problem.boundary_alpha;
   std::optional<structure::StructureModel> structure = problem.structure;  // this run's own state
   StepSettings settings;
   settings.dt = problem.dt;
@@ -152,7 +162,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
     try {
       if (n > 1) {  // the step-1 mesh is the initial one
         t0 = Clock::now();
-        mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
+        mesh = remesh_after(mesh, nodes, remesh_options);
         sum.remesh_seconds += since(t0);
       }
       const int iterations = advance_adaptive(step, mesh, settings, remesh_options, nodes,

@@ -156,6 +156,11 @@ void ModelChecker::check_mesh() {
     if (!std::isfinite(l) || (l != 0.0 && (l < 1.5 || l > 3.0)))
       error("mesh.insertion_length", "must be 0 (off) or in [1.5, 3]");
   }
+  if (model_.mesh().has_boundary_alpha()) {
+    const double a = model_.mesh().boundary_alpha();
+    if (!std::isfinite(a) || (a != 0.0 && (a < 0.6 || a > 3.0)))
+      error("mesh.boundary_alpha", "must be 0 (same as alpha) or in [0.6, 3]");
+  }
 }
 
 void ModelChecker::check_walls() {

@@ -71,6 +71,10 @@ void validate(std::span<const double> x, std::span<const double> y,
     throw std::invalid_argument("remesh: alpha must be finite and > 0 (got " +
                                 std::to_string(options.alpha) + ")");
   }
+  if (!(std::isfinite(options.boundary_alpha) && options.boundary_alpha >= 0.0)) {
+    throw std::invalid_argument("remesh: boundary_alpha must be finite and >= 0 (got " +
+                                std::to_string(options.boundary_alpha) + ")");
+  }
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (kind[i] != NodeKind::Removed && (!std::isfinite(x[i]) || !std::isfinite(y[i]))) {
       throw std::invalid_argument("remesh: node " + std::to_string(i) +
@@ -198,6 +202,11 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
 
   // Pass 1: alpha test and fluid test per finite face; record kept triangles.
   const double max_radius = options.alpha * options.h;
+  const double boundary_radius =
+      options.boundary_alpha > 0.0 ? std::min(options.boundary_alpha, options.alpha) * options.h : max_radius;
+  const auto was_boundary = [&](std::int32_t i) {
+    return static_cast<std::size_t>(i) < options.previous_boundary.size() && options.previous_boundary[i] != 0;
+  };
   mesh.triangles.reserve(tri.number_of_faces());
   for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
     const std::int32_t i0 = f->vertex(0)->info();
@@ -207,7 +216,10 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
                                kind[i2] == NodeKind::Fluid;
     const bool kept =
         touches_fluid && passes_alpha_test(f->vertex(0)->point(), f->vertex(1)->point(),
-                                           f->vertex(2)->point(), max_radius);
+                                           f->vertex(2)->point(),
+                                           was_boundary(i0) && was_boundary(i1) && was_boundary(i2)
+                                               ? boundary_radius
+                                               : max_radius);
     f->info() = kept ? 1 : 0;
   }
 

@@ -35,6 +35,14 @@ struct RemeshOptions {
   //   the interior of both is left out (only parts ending at nodes lying on it before the
   //   crossing stay); no node is ever invented, and no error is raised.
   std::vector<std::array<std::int32_t, 2>> constraints{};
+  // Per node, 1 for a node on the boundary of the previous step's mesh: on its free surface
+  // (FluidMesh::free_surface) or a particle in no triangle of it; nodes past its end count as
+  // 0. Empty (the default): no previous mesh. A triangle whose three nodes are all flagged
+  // spans a gap between free surfaces (spray, a jet against a wall or the pool, an air pocket):
+  // it is kept only when its circumradius <= boundary_alpha * h, so that gaps close only where
+  // the surfaces have really met and water is not created out of air.
+  std::span<const std::uint8_t> previous_boundary{};
+  double boundary_alpha = 0.0;  // 0: same as alpha; above alpha counts as alpha; < 0 throws
 };
 
 // The fluid mesh of one time step.
@@ -49,7 +57,7 @@ struct FluidMesh {
 
 // Triangulates the nodes (x[i], y[i]) of kinds kind[i], honouring options.constraints.
 // Throws std::invalid_argument on mismatched spans, a non-positive (or non-finite) h or
-// alpha, a non-finite coordinate, or an invalid constraint (see RemeshOptions).
+// alpha, a negative or non-finite boundary_alpha, a non-finite coordinate, or an invalid constraint (see RemeshOptions).
 // Coincident nodes (equal coordinates) are merged: the lowest index among them
 // represents the point, and the later duplicates get in_mesh = 0 and appear in no triangle.
 // Thread-safe (no shared state).

@@ -76,6 +76,14 @@ TEST(ModelValidation, ZeroParticleSpacing) {
   expect_single_error(validate_model(m), "mesh.h", "must be > 0");
 }
 
+TEST(ModelValidation, BoundaryAlphaOutOfRange) {
+  auto m = valid_model();
+  m.mutable_mesh()->set_boundary_alpha(0.3);
+  expect_single_error(validate_model(m), "mesh.boundary_alpha", "must be 0 (same as alpha) or in [0.6, 3]");
+  m.mutable_mesh()->set_boundary_alpha(0.0);
+  EXPECT_TRUE(validate_model(m).empty());
+}
+
 TEST(ModelValidation, FluidRegionOutsideEveryWall) {
   auto m = valid_model();
   auto* r = m.mutable_fluid_regions(0)->mutable_rectangle();

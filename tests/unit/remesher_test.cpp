@@ -322,6 +322,33 @@ TEST(Remesher, TinyInputs) {
   EXPECT_EQ(n.remesh(1.0, 0.70).triangles.size(), 0u);
 }
 
+// A triangle of three nodes on the previous mesh's boundary (a gap between free surfaces)
+// passes only the stricter boundary_alpha test; one interior node in it restores alpha.
+TEST(Remesher, GapBetweenPreviousBoundaryNodesNeedsTheBoundaryAlpha) {
+  Nodes n;
+  n.add(0.0, 0.0, NodeKind::Fluid);
+  n.add(1.0, 0.0, NodeKind::Fluid);
+  n.add(0.0, -1.0, NodeKind::Fluid);  // circumradius sqrt(2)/2 = 0.7071
+  RemeshOptions options{1.0, 0.8};
+  EXPECT_EQ(pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles.size(), 1u);
+  options.boundary_alpha = 0.7;
+  EXPECT_EQ(pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles.size(), 1u);  // no previous mesh
+  const std::vector<std::uint8_t> all{1, 1, 1}, two{1, 0, 1}, short_list{1, 1};
+  options.previous_boundary = all;
+  EXPECT_EQ(pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles.size(), 0u);
+  options.previous_boundary = two;
+  EXPECT_EQ(pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles.size(), 1u);
+  options.previous_boundary = short_list;  // node 2 is past its end: not flagged
+  EXPECT_EQ(pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles.size(), 1u);
+  options.previous_boundary = all;
+  options.boundary_alpha = 0.71;
+  EXPECT_EQ(pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles.size(), 1u);
+  options.boundary_alpha = 2.0;  // above alpha: alpha
+  EXPECT_EQ(pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles.size(), 1u);
+  options.boundary_alpha = -0.5;
+  EXPECT_THROW(pfem::mesh::remesh(n.x, n.y, n.kind, options), std::invalid_argument);
+}
+
 TEST(Remesher, CoincidentPointsKeepTheLowestIndex) {
   const int nx = 5, ny = 4;
   const double h = 0.1;
