@@ -201,6 +201,7 @@ class UnifiedStep {
   std::vector<fluid::GeometricDerivatives> geometric_;
   std::vector<BubbleCondensation> jacobian_bubbles_;
   SparseMatrix jacobian_, lu_pattern_;  // lu_pattern_: the Jacobian last factorised
+  int lu_steps_left_ = 0;  // steps that take the LU without trying GMRES first
   LuSolver jacobian_solver_;
 };
 

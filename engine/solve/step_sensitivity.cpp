@@ -20,6 +20,8 @@ namespace {
 // a GMRES solve per parameter (measured on the yielding obstacle: 2.6 s vs 8.1 s at P = 1,
 // 7.0 s vs 9.4 s at P = 5, to t = 0.3 s).
 constexpr int kIterativeParameters = 6;
+constexpr int kGmresIterations = 15;
+constexpr int kLuSteps = 50;
 }  // namespace
 
 void UnifiedStep::assemble_jacobian(const mesh::FluidMesh& mesh, const StepSettings& s, bool geometric_terms) {
@@ -100,10 +102,13 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
   }
   // Up to kIterativeParameters parameters: GMRES preconditioned by the step's Newton
   // factorisation, which differs from the Jacobian only by dt H, dt T and the drift of the
-  // iterate (about 5 iterations to 1e-13; the sensitivities agree with the LU's to 1e-12). More
-  // parameters, or a column that does not converge: UMFPACK's LU of the Jacobian, then one
-  // back-substitution per parameter.
-  bool iterative = num_params <= kIterativeParameters && s.formulation == StepSettings::Formulation::kCondensedBubble;
+  // iterate (about 5 iterations to 1e-13 on the yielding obstacle; the sensitivities agree with
+  // the LU's to 1e-12). More parameters, or a column that needs more than kGmresIterations:
+  // UMFPACK's LU of the Jacobian and one back-substitution per parameter, and the LU for the
+  // next kLuSteps steps too (a flow where the preconditioner is poor stays poor for a while).
+  bool iterative = num_params <= kIterativeParameters && lu_steps_left_ == 0 &&
+                   s.formulation == StepSettings::Formulation::kCondensedBubble;
+  if (lu_steps_left_ > 0) --lu_steps_left_;
   if (iterative) {
     const LinearOperator apply = [this](const Eigen::VectorXd& x) -> Eigen::VectorXd { return jacobian_ * x; };
     const LinearOperator precondition = [this](const Eigen::VectorXd& x) { return condensed_solver_.solve(x); };
@@ -111,12 +116,13 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
       Eigen::MatrixXd x(b.rows(), b.cols());
       for (long c = 0; c < b.cols() && iterative; ++c) {
         Eigen::VectorXd xc;
-        iterative = gmres(apply, precondition, b.col(c), xc, 1e-13, 30, 60).converged;
+        iterative = gmres(apply, precondition, b.col(c), xc, 1e-13, kGmresIterations, kGmresIterations).converged;
         x.col(c) = xc;
       }
       return x;
     };
     solve_condensed(mesh, jacobian_bubbles_, solve, rv, rp, dv_, dp_);
+    if (!iterative) lu_steps_left_ = kLuSteps;
   }
   if (!iterative) {
     try {
