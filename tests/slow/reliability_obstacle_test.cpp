@@ -4,7 +4,9 @@
 // model"). About 10 simulations of ~25 s each.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "clients/reliability/analysis.h"
 #include "clients/reliability/model_limit_state.h"
@@ -22,7 +24,12 @@ TEST(ReliabilityObstacle, FormWithDdmConverges) {
               r.form.beta, r.form.pf, r.form.x(0), r.form.x(1), r.form.iterations,
               r.simulations->simulations, r.wall_seconds);
   ASSERT_TRUE(r.form.converged) << r.form.message;
-  EXPECT_NEAR(r.form.beta, 3.65, 0.05);
+  // The design point lies on the limit state: a fresh simulation there gives g = 0 (to 0.1 % of
+  // the 72 mm threshold). beta moves with the engine's remeshing rules (3.647 through the server
+  // in session 2, 3.600 after the boundary alpha): a band, not a reference value.
+  const std::vector<double> x_star(r.form.x.data(), r.form.x.data() + r.form.x.size());
+  EXPECT_LT(std::abs(g->evaluate(x_star, {})), 1e-3 * 0.072);
+  EXPECT_NEAR(r.form.beta, 3.62, 0.08);
   // The yield stress drives the peak deflection: a weaker obstacle at the design point.
   EXPECT_LT(r.form.x(1), 5e4);
   EXPECT_GT(std::abs(r.form.alpha(1)), std::abs(r.form.alpha(0)));
