@@ -57,7 +57,8 @@ struct FluidMesh {
 
 // Triangulates the nodes (x[i], y[i]) of kinds kind[i], honouring options.constraints.
 // Throws std::invalid_argument on mismatched spans, a non-positive (or non-finite) h or
-// alpha, a negative or non-finite boundary_alpha, a non-finite coordinate, or an invalid constraint (see RemeshOptions).
+// alpha, a negative or non-finite boundary_alpha, a non-finite coordinate, or an invalid
+// constraint (see RemeshOptions).
 // Coincident nodes (equal coordinates) are merged: the lowest index among them
 // represents the point, and the later duplicates get in_mesh = 0 and appear in no triangle.
 // Thread-safe (no shared state).

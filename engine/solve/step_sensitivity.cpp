@@ -106,7 +106,9 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
   // the LU's to 1e-12). More parameters, or a column that needs more than kGmresIterations:
   // UMFPACK's LU of the Jacobian and one back-substitution per parameter, and the LU for the
   // next kLuSteps steps too (a flow where the preconditioner is poor stays poor for a while).
-  bool iterative = num_params <= kIterativeParameters && lu_steps_left_ == 0 &&
+  // (Only when this step factorised its Newton matrix: a state converged at its first iterate,
+  // as water at rest can be, leaves the previous step's factorisation in place.)
+  bool iterative = num_params <= kIterativeParameters && lu_steps_left_ == 0 && report_.factorizations > 0 &&
                    s.formulation == StepSettings::Formulation::kCondensedBubble;
   if (lu_steps_left_ > 0) --lu_steps_left_;
   if (iterative) {
