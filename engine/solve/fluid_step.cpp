@@ -39,12 +39,6 @@ bool segments_cross(double px, double py, double qx, double qy, double ax, doubl
   const double d3 = orient(px, py, qx, qy, ax, ay), d4 = orient(px, py, qx, qy, bx, by);
   return ((d1 > 0) != (d2 > 0) || d1 == 0 || d2 == 0) && ((d3 > 0) != (d4 > 0) || d3 == 0 || d4 == 0);
 }
-// Whether the move (px, py) -> (qx, qy) crosses or touches a wall piece.
-bool crosses_wall(const StepSettings& s, const NodeState& nodes, double px, double py, double qx, double qy) {
-  for (const auto& w : s.walls)
-    if (segments_cross(px, py, qx, qy, nodes.x[w[0]], nodes.y[w[0]], nodes.x[w[1]], nodes.y[w[1]])) return true;
-  return false;
-}
 }  // namespace
 
 void UnifiedStep::number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes, const StepSettings& s) {
@@ -334,22 +328,24 @@ void UnifiedStep::add_structure_tangent(const StepSettings& s, const structure::
   model->add_tangent(add, s.dt);  // at the trial state of the last residual
 }
 
+bool UnifiedStep::crosses_wall(const StepSettings& s, double px, double py, double qx, double qy) const {
+  const auto end_x = [&](int j) { return vx_dof_[j] >= 0 ? xn_[j] + s.dt * v_[vx_dof_[j]] : xn_[j]; };
+  const auto end_y = [&](int j) { return vy_dof_[j] >= 0 ? yn_[j] + s.dt * v_[vy_dof_[j]] : yn_[j]; };
+  for (const auto& [a, b] : s.walls) {
+    if (segments_cross(px, py, qx, qy, xn_[a], yn_[a], xn_[b], yn_[b])) return true;
+    const bool moves = vx_dof_[a] >= 0 || vy_dof_[a] >= 0 || vx_dof_[b] >= 0 || vy_dof_[b] >= 0;
+    if (moves && segments_cross(px, py, qx, qy, end_x(a), end_y(a), end_x(b), end_y(b))) return true;
+  }
+  return false;
+}
+
 void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
   // A particle whose move crosses a wall or beam hits it (advance() takes it out): typically a
   // splash particle reaching the floor or the obstacle's back, in free-surface triangles that
   // have no pressure to stop it, or in none on that edge at all (the alpha test drops the
-  // sliver it would make). A shorter step only brings it closer. A beam moves within the step:
-  // its piece is tested where it was and where it goes.
-  const auto end_x = [&](int j) { return vx_dof_[j] >= 0 ? xn_[j] + s.dt * v_[vx_dof_[j]] : xn_[j]; };
-  const auto end_y = [&](int j) { return vy_dof_[j] >= 0 ? yn_[j] + s.dt * v_[vy_dof_[j]] : yn_[j]; };
+  // sliver it would make). A shorter step only brings it closer.
   const auto crosses = [&](int i) {
-    const double px = xn_[i], py = yn_[i], qx = end_x(i), qy = end_y(i);
-    for (const auto& [a, b] : s.walls) {
-      if (segments_cross(px, py, qx, qy, xn_[a], yn_[a], xn_[b], yn_[b])) return true;
-      const bool moves = vx_dof_[a] >= 0 || vy_dof_[a] >= 0 || vx_dof_[b] >= 0 || vy_dof_[b] >= 0;
-      if (moves && segments_cross(px, py, qx, qy, end_x(a), end_y(a), end_x(b), end_y(b))) return true;
-    }
-    return false;
+    return crosses_wall(s, xn_[i], yn_[i], xn_[i] + s.dt * v_[vx_dof_[i]], yn_[i] + s.dt * v_[vy_dof_[i]]);
   };
   // Only particles sharing a triangle with a wall or structure node are near enough to cross.
   hits_wall_.assign(nodes.size(), 0);
@@ -375,7 +371,7 @@ void UnifiedStep::move_free_particles(const mesh::FluidMesh& mesh, const StepSet
     if (nodes.kind[i] != mesh::NodeKind::Fluid || mesh.in_mesh[i]) continue;
     const double vx = nodes.vx[i] + s.dt * s.gx, vy = nodes.vy[i] + s.dt * s.gy;
     const double x = xn_[i] + s.dt * vx, y = yn_[i] + s.dt * vy;
-    const bool hits = crosses_wall(s, nodes, xn_[i], yn_[i], x, y);
+    const bool hits = crosses_wall(s, xn_[i], yn_[i], x, y);
     nodes.vx[i] = hits ? 0.0 : vx, nodes.vy[i] = hits ? 0.0 : vy;
     nodes.x[i] = hits ? xn_[i] : x, nodes.y[i] = hits ? yn_[i] : y;
     // Sensitivities follow the same rule (gravity is no parameter).

@@ -148,8 +148,11 @@ class UnifiedStep {
   // StepFailure so that the step is retried shorter. A particle whose converged move crosses a
   // wall or beam is marked in hits_wall_ instead (its triangles may invert): it is removed.
   void check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
-  // Moves the particles outside the mesh ballistically; one whose path crosses a wall stops
-  // where it was (it hits the wall and sticks, as water does at a no-slip wall).
+  // Whether the move (px, py) -> (qx, qy) within the step crosses or touches a wall or beam
+  // piece; a beam's piece counts where it was at t_n and where the step's velocities take it.
+  bool crosses_wall(const StepSettings& s, double px, double py, double qx, double qy) const;
+  // Moves the particles outside the mesh ballistically; one whose path crosses a wall or beam
+  // stops where it was (it hits the wall and sticks, as water does at a no-slip wall).
   void move_free_particles(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const;
   // The exact Jacobian at the current iterate (engine/solve/step_sensitivity.cpp): H and T per
   // element (kept in geometric_; zero without geometric terms) and the structure's consistent
