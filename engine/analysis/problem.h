@@ -42,7 +42,8 @@ struct Problem {
   // Alpha for triangles of three nodes on the previous mesh's boundary (mesh::RemeshOptions).
   double boundary_alpha = 0.9;
   double removal_distance = 0.2;  // relative to h
-  double insertion_length = 1.6;  // relative to h
+  double insertion_length = 1.6;  // relative to h, edges with an end on the free surface
+  double interior_insertion_length = 2.0;  // relative to h, edges inside the water
   double dt = 0.0, t_end = 0.0;
   double newton_tolerance = 1e-10;
   int newton_max_iterations = 50;

@@ -78,11 +78,12 @@ int advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings sett
   return iterations;
 }
 
-// New particles at the middle of the edges that have grown longer than insertion_length*h,
-// with the mean velocity and pressure of the edge's ends (and so the mean sensitivities).
+// New particles at the middle of the edges that have grown too long (see edges_to_split), with
+// the mean velocity and pressure of the edge's ends (and so the mean sensitivities).
 int insert_particles(const mesh::FluidMesh& mesh, const Problem& problem, NodeState& nodes) {
   if (problem.insertion_length <= 0.0) return 0;
-  const auto edges = mesh::edges_to_split(mesh, nodes.x, nodes.y, nodes.kind, problem.insertion_length * problem.h);
+  const auto edges = mesh::edges_to_split(mesh, nodes.x, nodes.y, nodes.kind, problem.insertion_length * problem.h,
+                                          problem.interior_insertion_length * problem.h);
   for (const auto& [a, b] : edges) {
     const int i = nodes.add(0.5 * (nodes.x[a] + nodes.x[b]), 0.5 * (nodes.y[a] + nodes.y[b]), mesh::NodeKind::Fluid,
                             0.5 * (nodes.vx[a] + nodes.vx[b]), 0.5 * (nodes.vy[a] + nodes.vy[b]));

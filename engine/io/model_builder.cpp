@@ -161,6 +161,9 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
   pb.alpha = model.mesh().has_alpha() ? model.mesh().alpha() : 1.2;
   if (model.mesh().has_removal_distance()) pb.removal_distance = model.mesh().removal_distance();
   if (model.mesh().has_insertion_length()) pb.insertion_length = model.mesh().insertion_length();
+  if (model.mesh().has_interior_insertion_length())
+    pb.interior_insertion_length = model.mesh().interior_insertion_length();
+  if (pb.interior_insertion_length == 0.0) pb.interior_insertion_length = pb.insertion_length;
   if (model.mesh().has_boundary_alpha()) pb.boundary_alpha = model.mesh().boundary_alpha();
   const auto& a = model.analysis();
   pb.dt = a.dt();

@@ -156,6 +156,11 @@ void ModelChecker::check_mesh() {
     if (!std::isfinite(l) || (l != 0.0 && (l < 1.5 || l > 3.0)))
       error("mesh.insertion_length", "must be 0 (off) or in [1.5, 3]");
   }
+  if (model_.mesh().has_interior_insertion_length()) {
+    const double l = model_.mesh().interior_insertion_length();
+    if (!std::isfinite(l) || (l != 0.0 && (l < 1.5 || l > 3.0)))
+      error("mesh.interior_insertion_length", "must be 0 (same as insertion_length) or in [1.5, 3]");
+  }
   if (model_.mesh().has_boundary_alpha()) {
     const double a = model_.mesh().boundary_alpha();
     if (!std::isfinite(a) || (a != 0.0 && (a < 0.6 || a > 3.0)))

@@ -43,10 +43,11 @@ int remove_close_particles(const FluidMesh& mesh, std::span<const double> x,
 
 std::vector<std::array<std::int32_t, 2>> edges_to_split(const FluidMesh& mesh, std::span<const double> x,
                                                         std::span<const double> y,
-                                                        std::span<const NodeKind> kind, double max_length) {
+                                                        std::span<const NodeKind> kind, double surface_length,
+                                                        double interior_length) {
   std::vector<std::array<std::int32_t, 2>> edges;
   std::vector<std::uint8_t> used(x.size(), 0);
-  const double l2 = max_length * max_length;
+  const double surface2 = surface_length * surface_length, interior2 = interior_length * interior_length;
   for (const auto& t : mesh.triangles) {
     for (int e = 0; e < 3; ++e) {
       const std::int32_t a = t[e], b = t[(e + 1) % 3];
@@ -58,7 +59,8 @@ std::vector<std::array<std::int32_t, 2>> edges_to_split(const FluidMesh& mesh, s
       // the surface and add water.
       if (mesh.free_surface[a] && mesh.free_surface[b]) continue;
       const double dx = x[a] - x[b], dy = y[a] - y[b];
-      if (dx * dx + dy * dy <= l2) continue;
+      const bool interior = !mesh.free_surface[a] && !mesh.free_surface[b];
+      if (dx * dx + dy * dy <= (interior ? interior2 : surface2)) continue;
       used[a] = used[b] = 1;
       edges.push_back({a, b});
     }

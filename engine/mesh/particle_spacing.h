@@ -21,10 +21,16 @@ namespace pfem::mesh {
 int remove_close_particles(const FluidMesh& mesh, std::span<const double> x,
                            std::span<const double> y, std::span<NodeKind> kind, double min_distance);
 
-// Mesh edges between two particles longer than max_length, to be split at their middle; each node
+// Mesh edges between two particles to be split at their middle: longer than surface_length when
+// an end is on the free surface, longer than interior_length when both are inside the water (an
+// edge along the free surface is never split). Near the surface a shorter edge keeps thin jets
+// resolved, where the alpha test would otherwise lose water; inside, an edge of 2 h and more can
+// take a particle without making the water denser than h, where a shorter one would add
+// particles that nothing takes out again (the count would double in a violent flow). Each node
 // is the end of at most one of them, so new particles are never crowded together.
 std::vector<std::array<std::int32_t, 2>> edges_to_split(const FluidMesh& mesh, std::span<const double> x,
                                                         std::span<const double> y,
-                                                        std::span<const NodeKind> kind, double max_length);
+                                                        std::span<const NodeKind> kind, double surface_length,
+                                                        double interior_length);
 
 }  // namespace pfem::mesh

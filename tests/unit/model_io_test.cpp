@@ -84,6 +84,15 @@ TEST(ModelValidation, BoundaryAlphaOutOfRange) {
   EXPECT_TRUE(validate_model(m).empty());
 }
 
+TEST(ModelValidation, InteriorInsertionLengthOutOfRange) {
+  auto m = valid_model();
+  m.mutable_mesh()->set_interior_insertion_length(1.2);
+  expect_single_error(validate_model(m), "mesh.interior_insertion_length",
+                      "must be 0 (same as insertion_length) or in [1.5, 3]");
+  m.mutable_mesh()->set_interior_insertion_length(0.0);
+  EXPECT_TRUE(validate_model(m).empty());
+}
+
 TEST(ModelValidation, FluidRegionOutsideEveryWall) {
   auto m = valid_model();
   auto* r = m.mutable_fluid_regions(0)->mutable_rectangle();

@@ -1,0 +1,77 @@
+// Unit tests of the particle spacing control between steps (engine/mesh/particle_spacing.h):
+// which edges get a new particle, which particles are taken out.
+#include "engine/mesh/particle_spacing.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <vector>
+
+namespace {
+
+using pfem::mesh::FluidMesh;
+using pfem::mesh::NodeKind;
+using Edge = std::array<std::int32_t, 2>;
+
+// Two triangles (0, 1, 2) and (1, 3, 2) on the rectangle [0, w] x [0, 0.5]: edges 0-1 and 2-3
+// of length w, the diagonal 1-2 longer, the sides 0-2 and 1-3 of 0.5.
+struct Quad {
+  std::vector<double> x, y;
+  std::vector<NodeKind> kind{NodeKind::Fluid, NodeKind::Fluid, NodeKind::Fluid, NodeKind::Fluid};
+  FluidMesh mesh;
+
+  explicit Quad(double w) : x{0.0, w, 0.0, w}, y{0.0, 0.0, 0.5, 0.5} {
+    mesh.triangles = {{0, 1, 2}, {1, 3, 2}};
+    mesh.in_mesh.assign(4, 1);
+    mesh.free_surface.assign(4, 0);
+  }
+  std::vector<Edge> split(double surface_length, double interior_length) const {
+    return pfem::mesh::edges_to_split(mesh, x, y, kind, surface_length, interior_length);
+  }
+};
+
+TEST(ParticleSpacing, InteriorEdgesAreSplitOnlyBeyondTheInteriorLength) {
+  const Quad inside(1.8);  // longest edge, the diagonal: 1.868
+  EXPECT_TRUE(inside.split(1.6, 2.0).empty());
+  // 0-1 and 3-2; the diagonal shares their nodes (each node ends at most one split edge)
+  EXPECT_EQ(inside.split(1.6, 1.6), (std::vector<Edge>{{0, 1}, {3, 2}}));
+
+  const Quad stretched(2.1);
+  EXPECT_EQ(stretched.split(1.6, 2.0), (std::vector<Edge>{{0, 1}, {3, 2}}));
+}
+
+TEST(ParticleSpacing, EdgesTouchingTheSurfaceUseTheSurfaceLength) {
+  Quad q(1.8);
+  q.mesh.free_surface[0] = 1;  // 0-1 (1.8) touches the surface; 2-3 (1.8) is inside
+  EXPECT_EQ(q.split(1.6, 2.0), (std::vector<Edge>{{0, 1}}));
+  q.mesh.free_surface[1] = 1;  // 0-1 now runs along the surface: never split; the diagonal is next
+  EXPECT_EQ(q.split(1.6, 2.0), (std::vector<Edge>{{1, 2}}));
+  q.mesh.free_surface[2] = 1, q.mesh.free_surface[3] = 1;  // every edge along the surface
+  EXPECT_TRUE(q.split(1.0, 1.0).empty());
+}
+
+TEST(ParticleSpacing, EdgesToWallNodesAreNeverSplit) {
+  Quad q(2.5);
+  q.kind[0] = q.kind[2] = NodeKind::Wall;  // 0-1 and 1-2 end at a wall node; 2-3 too
+  EXPECT_TRUE(q.split(1.6, 2.0).empty());
+  q.kind[2] = NodeKind::Fluid;  // 2-3 (2.5) between particles; 1-2 (2.55) first in the traversal
+  EXPECT_EQ(q.split(1.6, 2.0), (std::vector<Edge>{{1, 2}}));
+}
+
+TEST(ParticleSpacing, CloseParticlesAreRemovedHigherIndexOrNextToAWall) {
+  Quad q(1.0);
+  q.y[2] = 0.1;  // 0-2 closer than 0.2: of two particles the higher index goes
+  auto kind = q.kind;
+  EXPECT_EQ(pfem::mesh::remove_close_particles(q.mesh, q.x, q.y, kind, 0.2), 1);
+  EXPECT_EQ(kind, (std::vector<NodeKind>{NodeKind::Fluid, NodeKind::Fluid, NodeKind::Removed, NodeKind::Fluid}));
+
+  kind = q.kind;
+  kind[2] = NodeKind::Wall;  // next to a wall node the particle goes, whatever its index
+  EXPECT_EQ(pfem::mesh::remove_close_particles(q.mesh, q.x, q.y, kind, 0.2), 1);
+  EXPECT_EQ(kind[0], NodeKind::Removed);
+
+  kind = q.kind;
+  EXPECT_EQ(pfem::mesh::remove_close_particles(q.mesh, q.x, q.y, kind, 0.05), 0);
+}
+
+}  // namespace
