@@ -113,7 +113,9 @@ grpc::Status GradientService::WatchJob(grpc::ServerContext* context,
       const auto job = jobs_.wait_for_change(request->job_id(), &version, kMinInterval);
       if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "watch cancelled");
       const bool done = finished(job.state());
-      if (version != sent_version && (done || Clock::now() - last_sent >= kMinInterval)) {
+      // The final state always goes out: a job that finished and left the active list between
+      // two waits comes back from the store with the version of the last update sent.
+      if (done || (version != sent_version && Clock::now() - last_sent >= kMinInterval)) {
         if (!writer->Write(job)) return grpc::Status(grpc::StatusCode::CANCELLED, "watcher left");
         sent_version = version;
         last_sent = Clock::now();

@@ -193,7 +193,7 @@ class UnifiedStep {
   SparseMatrix matrix_, g_;
   Eigen::VectorXd factor_mp_;  // Mp at the last factorisation
   SymmetricSolver global_solver_{SymmetricBackend::kCholmodLlt};
-  SymmetricSolver condensed_solver_{SymmetricBackend::kCholmodLdlt};
+  SymmetricSolver condensed_solver_{SymmetricBackend::kSupernodalLdlt};
   // DDM: bubble sensitivities (2 x P) at t_n per element and of the last step by triangle; the
   // solved sensitivities of the unknowns (one column per parameter).
   using BubbleSensitivity = Eigen::Matrix<double, 2, Eigen::Dynamic>;

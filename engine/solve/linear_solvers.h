@@ -15,7 +15,8 @@ using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 // kCholmodLlt: supernodal Cholesky, positive definite matrices only.
 // kCholmodLdlt, kEigenLdlt: simplicial LDL^T without pivoting, which also factorises the
 // symmetric quasi-definite [A B; B^T -C] systems (A, C positive definite) of the fluid.
-enum class SymmetricBackend { kCholmodLlt, kCholmodLdlt, kEigenLdlt };
+// kSupernodalLdlt: the same LDL^T with dense supernodal blocks (supernodal_ldlt.h).
+enum class SymmetricBackend { kCholmodLlt, kCholmodLdlt, kEigenLdlt, kSupernodalLdlt };
 
 // Factorises symmetric matrices (the lower triangle is read).
 class SymmetricSolver {

@@ -1,0 +1,286 @@
+#include "engine/solve/supernodal_ldlt.h"
+
+#include <cholmod.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+
+// The BLAS (Fortran interface; the system's libblas.so.3 is OpenBLAS, as for CHOLMOD).
+extern "C" void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
+                       const double* alpha, const double* a, const int* lda, const double* b, const int* ldb,
+                       const double* beta, double* c, const int* ldc, std::size_t transa_len,
+                       std::size_t transb_len);
+extern "C" void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m,
+                       const int* n, const double* alpha, const double* a, const int* lda, double* b, const int* ldb,
+                       std::size_t side_len, std::size_t uplo_len, std::size_t transa_len, std::size_t diag_len);
+
+namespace pfem {
+namespace {
+
+// c (m x n, leading dimension ldc) = beta c + alpha a b^T, a m x k, b n x k.
+void gemm_nt(int m, int n, int k, double alpha, const double* a, int lda, const double* b, int ldb, double beta,
+             double* c, int ldc) {
+  dgemm_("N", "T", &m, &n, &k, &alpha, a, &lda, b, &ldb, &beta, c, &ldc, 1, 1);
+}
+
+// Supernodes wider than this are factorised a panel of this many columns at a time.
+constexpr int kPanel = 32;
+
+// In place LDL^T of one supernode: x is nsrow x nscol (leading dimension nsrow), its top
+// nscol x nscol block the diagonal block (lower triangle read), the rows below it the
+// off-diagonal block. On return the strictly lower part holds L (unit diagonal implied) and d
+// the nscol pivots; the upper triangle of the diagonal block is left as scratch. w holds at
+// least nscol * min(nscol, kPanel) doubles. Returns false on a zero or non-finite pivot.
+bool factor_supernode(double* x, int nsrow, int nscol, double* d, double* w) {
+  // A narrow supernode (one panel) is factorised right-looking over all its rows. A wide one
+  // kPanel columns at a time over its diagonal block (the columns right of each panel updated
+  // by dgemm, x22 -= L21 D L21^T), then its off-diagonal rows by dtrsm: L21 = X21 L11^-T D^-1.
+  const bool wide = nscol > kPanel;
+  const int rows = wide ? nscol : nsrow;
+  for (int j0 = 0; j0 < nscol; j0 += kPanel) {
+    const int j1 = std::min(j0 + kPanel, nscol);
+    for (int j = j0; j < j1; ++j) {
+      double* cj = x + static_cast<long>(j) * nsrow;
+      const double dj = cj[j];
+      if (dj == 0.0 || !std::isfinite(dj)) return false;
+      d[j] = dj;
+      const double inv = 1.0 / dj;
+      for (int i = j + 1; i < rows; ++i) cj[i] *= inv;
+      for (int k = j + 1; k < j1; ++k) {
+        double* ck = x + static_cast<long>(k) * nsrow;
+        const double f = cj[k] * dj;
+        for (int i = k; i < rows; ++i) ck[i] -= cj[i] * f;
+      }
+    }
+    if (j1 < nscol) {
+      const int nt = nscol - j1, width = j1 - j0;
+      for (int j = 0; j < width; ++j)
+        for (int i = 0; i < nt; ++i) w[i + j * nt] = x[(j1 + i) + static_cast<long>(j0 + j) * nsrow] * d[j0 + j];
+      gemm_nt(nt, nt, width, -1.0, x + j1 + static_cast<long>(j0) * nsrow, nsrow, w, nt, 1.0,
+              x + j1 + static_cast<long>(j1) * nsrow, nsrow);
+    }
+  }
+  const int m = nsrow - nscol;
+  if (wide && m > 0) {
+    const double one = 1.0;
+    dtrsm_("R", "L", "T", "U", &m, &nscol, &one, x, &nsrow, x + nscol, &nsrow, 1, 1, 1, 1);
+    for (int j = 0; j < nscol; ++j) {
+      const double inv = 1.0 / d[j];
+      double* below = x + nscol + static_cast<long>(j) * nsrow;
+      for (int i = 0; i < m; ++i) below[i] *= inv;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+void SupernodalLdlt::analyze(const SparseMatrix& a) {
+  if (a.rows() != a.cols() || !a.isCompressed())
+    throw std::invalid_argument("SupernodalLdlt needs a square, compressed matrix");
+  n_ = static_cast<int>(a.rows());
+  outer_.assign(a.outerIndexPtr(), a.outerIndexPtr() + n_ + 1);
+  inner_.assign(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
+
+  // CHOLMOD's ordering (AMD, as for its simplicial LDL^T) and supernodal symbolic factorisation.
+  cholmod_common common;
+  cholmod_start(&common);
+  common.supernodal = CHOLMOD_SUPERNODAL;
+  cholmod_sparse pattern{};
+  pattern.nrow = pattern.ncol = static_cast<std::size_t>(n_);
+  pattern.nzmax = inner_.size();
+  pattern.p = const_cast<int*>(a.outerIndexPtr());
+  pattern.i = const_cast<int*>(a.innerIndexPtr());
+  pattern.stype = -1;  // the lower triangle
+  pattern.itype = CHOLMOD_INT;
+  pattern.xtype = CHOLMOD_PATTERN;
+  pattern.dtype = CHOLMOD_DOUBLE;
+  pattern.sorted = 1;
+  pattern.packed = 1;
+  cholmod_factor* l = cholmod_analyze(&pattern, &common);
+  if (!l || common.status < CHOLMOD_OK || !l->is_super) {
+    if (l) cholmod_free_factor(&l, &common);
+    cholmod_finish(&common);
+    throw std::runtime_error("CHOLMOD's supernodal analysis failed");
+  }
+  nsuper_ = static_cast<int>(l->nsuper);
+  const auto* perm = static_cast<const int*>(l->Perm);
+  const auto* super = static_cast<const int*>(l->super);
+  const auto* pi = static_cast<const int*>(l->pi);
+  const auto* px = static_cast<const int*>(l->px);
+  const auto* s = static_cast<const int*>(l->s);
+  perm_.assign(perm, perm + n_);
+  super_.assign(super, super + nsuper_ + 1);
+  pi_.assign(pi, pi + nsuper_ + 1);
+  px_.assign(px, px + nsuper_ + 1);
+  ls_.assign(s, s + pi_[nsuper_]);
+  lx_.resize(static_cast<std::size_t>(l->xsize));
+  max_update_ = static_cast<long>(l->maxcsize);
+  cholmod_free_factor(&l, &common);
+  cholmod_finish(&common);
+
+  super_of_col_.resize(n_);
+  max_rows_ = max_cols_ = 0;
+  for (int k = 0; k < nsuper_; ++k) {
+    std::fill(super_of_col_.begin() + super_[k], super_of_col_.begin() + super_[k + 1], k);
+    max_cols_ = std::max(max_cols_, super_[k + 1] - super_[k]);
+    max_rows_ = std::max(max_rows_, static_cast<int>(pi_[k + 1] - pi_[k]));
+  }
+
+  // Where each entry of a's lower triangle goes in the factor: entry (i, j) is entry
+  // (max, min) of the permuted matrix, whose column lies in one supernode. First the permuted
+  // lower triangle by columns (a transpose-like bucket pass), then each supernode's columns.
+  std::vector<int> iperm(n_);
+  for (int k = 0; k < n_; ++k) iperm[perm_[k]] = k;
+  const int* outer = a.outerIndexPtr();
+  const int* inner = a.innerIndexPtr();
+  std::vector<int> start(n_ + 1, 0);
+  for (int j = 0; j < n_; ++j)
+    for (int p = outer[j]; p < outer[j + 1]; ++p)
+      if (inner[p] >= j) ++start[std::min(iperm[inner[p]], iperm[j]) + 1];
+  for (int k = 0; k < n_; ++k) start[k + 1] += start[k];
+  const int lower = start[n_];
+  std::vector<int> row(lower), src(lower), slot(start.begin(), start.end() - 1);
+  for (int j = 0; j < n_; ++j)
+    for (int p = outer[j]; p < outer[j + 1]; ++p) {
+      if (inner[p] < j) continue;
+      const int pr = iperm[inner[p]], pc = iperm[j];
+      const int q = slot[std::min(pr, pc)]++;
+      row[q] = std::max(pr, pc);
+      src[q] = p;
+    }
+  entry_src_.resize(lower);
+  entry_dst_.resize(lower);
+  entry_start_.assign(nsuper_ + 1, 0);
+  std::vector<int> local(n_, -1);  // row index -> position in the current supernode
+  int t = 0;
+  for (int k = 0; k < nsuper_; ++k) {
+    entry_start_[k] = t;
+    const int k1 = super_[k], nsrow = static_cast<int>(pi_[k + 1] - pi_[k]);
+    for (int i = 0; i < nsrow; ++i) local[ls_[pi_[k] + i]] = i;
+    for (int c = k1; c < super_[k + 1]; ++c)
+      for (int q = start[c]; q < start[c + 1]; ++q, ++t) {
+        entry_src_[t] = src[q];
+        entry_dst_[t] = px_[k] + static_cast<long>(c - k1) * nsrow + local[row[q]];
+      }
+  }
+  entry_start_[nsuper_] = t;
+  d_.resize(n_);
+}
+
+bool SupernodalLdlt::factorize(const SparseMatrix& a) {
+  if (!a.isCompressed()) throw std::invalid_argument("SupernodalLdlt needs a compressed matrix");
+  const bool same_pattern = a.rows() == n_ && a.nonZeros() == static_cast<long>(inner_.size()) &&
+                            std::equal(outer_.begin(), outer_.end(), a.outerIndexPtr()) &&
+                            std::equal(inner_.begin(), inner_.end(), a.innerIndexPtr());
+  if (!same_pattern) analyze(a);
+  const double* values = a.valuePtr();
+  // Left-looking: supernode s gathers its entries of a, then the updates of every earlier
+  // supernode d with rows in s's columns. Supernodes waiting to update s are linked from
+  // head[s] (next[] chains them); lpos[d] is where d's next rows to use start.
+  std::vector<int> local(n_), relative(max_rows_), head(nsuper_, -1), next(nsuper_, -1), lpos(nsuper_, 0);
+  std::vector<double> update(std::max(max_update_, 1L)), w(static_cast<std::size_t>(max_cols_) * max_cols_ + 1);
+  double* lx = lx_.data();
+  for (int s = 0; s < nsuper_; ++s) {
+    const int k1 = super_[s], k2 = super_[s + 1], nscol = k2 - k1;
+    const long psi = pi_[s];
+    const int nsrow = static_cast<int>(pi_[s + 1] - psi);
+    double* xs = lx + px_[s];
+    std::fill(xs, xs + static_cast<long>(nsrow) * nscol, 0.0);
+    for (long q = entry_start_[s]; q < entry_start_[s + 1]; ++q) lx[entry_dst_[q]] = values[entry_src_[q]];
+    for (int i = 0; i < nsrow; ++i) local[ls_[psi + i]] = i;
+
+    for (int d = head[s]; d >= 0;) {
+      const int dnext = next[d];
+      const long pdi = pi_[d], pdend = pi_[d + 1];
+      const int ndrow = static_cast<int>(pdend - pdi), ndcol = super_[d + 1] - super_[d];
+      const long pdi1 = pdi + lpos[d];
+      long pdi2 = pdi1;
+      while (pdi2 < pdend && ls_[pdi2] < k2) ++pdi2;
+      const int ndrow1 = static_cast<int>(pdi2 - pdi1), ndrow2 = static_cast<int>(pdend - pdi1);
+      const std::size_t update_size = static_cast<std::size_t>(ndrow1) * ndrow2;
+      if (update_size > update.size()) update.resize(update_size);  // CHOLMOD's maxcsize should cover it
+      // update (ndrow2 x ndrow1) = L_d(rows from pdi1) D_d L_d(rows pdi1..pdi2)^T
+      const double* ld = lx + px_[d] + (pdi1 - pdi);
+      const double* dd = d_.data() + super_[d];
+      for (int j = 0; j < ndcol; ++j)
+        for (int i = 0; i < ndrow1; ++i) w[i + j * ndrow1] = ld[i + static_cast<long>(j) * ndrow] * dd[j];
+      gemm_nt(ndrow2, ndrow1, ndcol, 1.0, ld, ndrow, w.data(), ndrow1, 0.0, update.data(), ndrow2);
+      for (int i = 0; i < ndrow2; ++i) relative[i] = local[ls_[pdi1 + i]];
+      for (int j = 0; j < ndrow1; ++j) {
+        double* col = xs + static_cast<long>(relative[j]) * nsrow;
+        const double* u = update.data() + static_cast<long>(j) * ndrow2;
+        for (int i = j; i < ndrow2; ++i) col[relative[i]] -= u[i];
+      }
+      // d's next target is the supernode of its first row past s.
+      lpos[d] = static_cast<int>(pdi2 - pdi);
+      if (pdi2 < pdend) {
+        const int target = super_of_col_[ls_[pdi2]];
+        next[d] = head[target];
+        head[target] = d;
+      }
+      d = dnext;
+    }
+
+    if (!factor_supernode(xs, nsrow, nscol, d_.data() + k1, w.data())) return false;
+    if (nsrow > nscol) {
+      lpos[s] = nscol;
+      const int target = super_of_col_[ls_[psi + nscol]];
+      next[s] = head[target];
+      head[target] = s;
+    }
+  }
+  return true;
+}
+
+void SupernodalLdlt::solve(Eigen::Ref<Eigen::MatrixXd> b) const {
+  if (b.rows() != n_) throw std::invalid_argument("SupernodalLdlt::solve: wrong number of rows");
+  using ConstColumn = Eigen::Map<const Eigen::VectorXd>;
+  // Per supernode: the triangular diagonal block on its own (contiguous) unknowns, and the
+  // off-diagonal block as dense products with t, gathered or scattered once per row.
+  Eigen::VectorXd buffer(n_), t_buffer(max_rows_);
+  double* y = buffer.data();
+  double* t = t_buffer.data();
+  const double* lx = lx_.data();
+  for (long c = 0; c < b.cols(); ++c) {
+    for (int k = 0; k < n_; ++k) y[k] = b(perm_[k], c);
+    // L y = b.
+    for (int s = 0; s < nsuper_; ++s) {
+      const int k1 = super_[s], nscol = super_[s + 1] - k1;
+      const int nsrow = static_cast<int>(pi_[s + 1] - pi_[s]), nrest = nsrow - nscol;
+      const int* rows = ls_.data() + pi_[s] + nscol;
+      const double* xs = lx + px_[s];
+      double* ys = y + k1;
+      Eigen::Map<Eigen::VectorXd> tr(t, nrest);
+      tr.setZero();
+      for (int j = 0; j < nscol; ++j) {
+        const double* col = xs + static_cast<long>(j) * nsrow;
+        const double yj = ys[j];
+        Eigen::Map<Eigen::VectorXd>(ys + j + 1, nscol - j - 1) -= yj * ConstColumn(col + j + 1, nscol - j - 1);
+        tr += yj * ConstColumn(col + nscol, nrest);
+      }
+      for (int i = 0; i < nrest; ++i) y[rows[i]] -= t[i];
+    }
+    for (int k = 0; k < n_; ++k) y[k] /= d_[k];
+    // L^T x = y, backwards.
+    for (int s = nsuper_ - 1; s >= 0; --s) {
+      const int k1 = super_[s], nscol = super_[s + 1] - k1;
+      const int nsrow = static_cast<int>(pi_[s + 1] - pi_[s]), nrest = nsrow - nscol;
+      const int* rows = ls_.data() + pi_[s] + nscol;
+      const double* xs = lx + px_[s];
+      double* ys = y + k1;
+      for (int i = 0; i < nrest; ++i) t[i] = y[rows[i]];
+      const ConstColumn tr(t, nrest);
+      for (int j = nscol - 1; j >= 0; --j) {
+        const double* col = xs + static_cast<long>(j) * nsrow;
+        ys[j] -= ConstColumn(col + nscol, nrest).dot(tr) +
+                 ConstColumn(col + j + 1, nscol - j - 1).dot(ConstColumn(ys + j + 1, nscol - j - 1));
+      }
+    }
+    for (int k = 0; k < n_; ++k) b(perm_[k], c) = y[k];
+  }
+}
+
+}  // namespace pfem
