@@ -1,5 +1,7 @@
 #include "engine/fluid/mini_sensitivity.h"
 
+#include <cmath>
+
 namespace pfem::fluid {
 
 ElementResidual element_residual(const MiniMatrices& m, double dt, const ElementState& s) {
@@ -7,6 +9,52 @@ ElementResidual element_residual(const MiniMatrices& m, double dt, const Element
   // than the arithmetic (this runs for every element at every Newton iteration).
   return {m.F - m.M.lazyProduct((s.v - s.vn) / dt) - m.K.lazyProduct(s.v) + m.G.lazyProduct(s.p),
           -m.Mp.cwiseProduct(s.p - s.pn) / dt - m.G.transpose().lazyProduct(s.v)};
+}
+
+DirectResidual element_residual(const TriangleGeometry& g, const FluidConstants& f, double t, double bx, double by,
+                                double dt, const ElementState& s) {
+  // The products of mini_matrices' closed forms (56)-(63) written out: M has four distinct
+  // entries, K v and G^T v go through the sums of c_b, d_b times the corner velocities.
+  const double A = g.A;
+  const auto& c = g.c;
+  const auto& d = g.d;
+  const Vec8& v = s.v;
+  const Vec8 w = (v - s.vn) / dt;
+  const double m_aa = f.rho * A / 12.0 * t, m_ab = f.rho * A / 24.0 * t;
+  const double m_a4 = 3.0 * f.rho * A / 40.0 * t, m_44 = 81.0 * f.rho * A / 560.0 * t;
+  const double k = f.mu / (6.0 * A) * t, k4 = 27.0 * f.mu / (40.0 * A) * t;
+  const double fc = f.rho * A / 6.0 * t, f4 = 9.0 * f.rho * A / 40.0 * t;
+  const double wx = w(0) + w(2) + w(4), wy = w(1) + w(3) + w(5);
+  double scx = 0, sdx = 0, scy = 0, sdy = 0, cc = 0, dd = 0, cd = 0, cp = 0, dp = 0, abs_corner = 0;
+  for (int b = 0; b < 3; ++b) {
+    scx += c[b] * v(2 * b), sdx += d[b] * v(2 * b);
+    scy += c[b] * v(2 * b + 1), sdy += d[b] * v(2 * b + 1);
+    cc += c[b] * c[b], dd += d[b] * d[b], cd += c[b] * d[b];
+    cp += c[b] * s.p(b), dp += d[b] * s.p(b);
+    abs_corner += std::abs(c[b]) * std::abs(v(2 * b)) + std::abs(d[b]) * std::abs(v(2 * b + 1));
+  }
+  const double p_sum = s.p.sum();
+  DirectResidual r;
+  for (int a = 0; a < 3; ++a) {
+    const double mw_x = (m_aa - m_ab) * w(2 * a) + m_ab * wx + m_a4 * w(6);
+    const double mw_y = (m_aa - m_ab) * w(2 * a + 1) + m_ab * wy + m_a4 * w(7);
+    const double kv_x = k * (4.0 * c[a] * scx + 3.0 * d[a] * sdx + 3.0 * d[a] * scy - 2.0 * c[a] * sdy);
+    const double kv_y = k * (3.0 * c[a] * sdx - 2.0 * d[a] * scx + 4.0 * d[a] * sdy + 3.0 * c[a] * scy);
+    r.rv(2 * a) = fc * bx - mw_x - kv_x + c[a] / 6.0 * t * p_sum;
+    r.rv(2 * a + 1) = fc * by - mw_y - kv_y + d[a] / 6.0 * t * p_sum;
+  }
+  r.rv(6) = f4 * bx - (m_a4 * wx + m_44 * w(6)) - k4 * ((4.0 * cc + 3.0 * dd) * v(6) + cd * v(7)) - 9.0 / 40.0 * t * cp;
+  r.rv(7) = f4 * by - (m_a4 * wy + m_44 * w(7)) - k4 * (cd * v(6) + (4.0 * dd + 3.0 * cc) * v(7)) - 9.0 / 40.0 * t * dp;
+  r.mp = A / (6.0 * f.kappa) * t;
+  for (int b = 0; b < 3; ++b) {
+    const double gtv = t / 6.0 * (scx + sdy) - 9.0 / 40.0 * t * (c[b] * v(6) + d[b] * v(7));
+    const double mp_dp = r.mp * (s.p(b) - s.pn(b)) / dt;
+    r.rp(b) = -mp_dp - gtv;
+    r.rp_abs(b) = std::abs(mp_dp) + t / 6.0 * abs_corner +
+                  9.0 / 40.0 * t * (std::abs(c[b]) * std::abs(v(6)) + std::abs(d[b]) * std::abs(v(7)));
+  }
+  r.f_squared = (3.0 * fc * fc + f4 * f4) * (bx * bx + by * by);
+  return r;
 }
 
 void geometric_derivatives(const TriangleGeometry& g, const MiniMatrices& m, double mu, double t, double dt,

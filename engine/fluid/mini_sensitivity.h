@@ -28,6 +28,18 @@ struct ElementResidual {
 
 ElementResidual element_residual(const MiniMatrices& m, double dt, const ElementState& s);
 
+// The same residual straight from the geometry, without forming the matrices (every Newton
+// iteration needs the residual, the matrices only when the Newton matrix is refactorised), with
+// the magnitudes of rp's terms summed (|Mp (p - pn)|/dt + |G|^T |v|: their round-off scale), the
+// pressure mass of each corner (Mp is the same for the three) and the squared norm of F.
+struct DirectResidual {
+  Vec8 rv;
+  Vec3 rp, rp_abs;
+  double mp = 0.0, f_squared = 0.0;
+};
+DirectResidual element_residual(const TriangleGeometry& g, const FluidConstants& f, double thickness, double bx,
+                                double by, double dt, const ElementState& s);
+
 // drv/dx and drp/dx at the geometry g whose matrices are m (mu and the thickness t enter K).
 struct GeometricDerivatives {
   Mat86 drv_dx;

@@ -70,10 +70,11 @@ void UnifiedStep::number_unknowns(const mesh::FluidMesh& mesh, const NodeState& 
   n_v_ = n_node_v_ + 2 * static_cast<int>(mesh.triangles.size());
 }
 
-void UnifiedStep::element_matrices(const mesh::FluidMesh& mesh, const StepSettings& s) {
+void UnifiedStep::element_terms(const mesh::FluidMesh& mesh, const StepSettings& s) {
   const int ne = static_cast<int>(mesh.triangles.size());
-  mats_.resize(ne);
   geometries_.resize(ne);
+  element_residuals_.resize(ne);
+  matrices_current_ = false;
 #pragma omp parallel for schedule(static) num_threads(s.threads)
   for (int e = 0; e < ne; ++e) {
     std::array<double, 3> x, y;
@@ -83,8 +84,18 @@ void UnifiedStep::element_matrices(const mesh::FluidMesh& mesh, const StepSettin
       y[a] = yn_[i] + (dy >= 0 ? s.dt * v_[dy] : 0.0);
     }
     geometries_[e] = fluid::triangle_geometry(x, y);
-    fluid::mini_matrices(geometries_[e], s.fluid, s.thickness, s.gx, s.gy, mats_[e]);
+    element_residuals_[e] =
+        fluid::element_residual(geometries_[e], s.fluid, s.thickness, s.gx, s.gy, s.dt, element_state(mesh, e));
   }
+}
+
+void UnifiedStep::element_matrices(const StepSettings& s) {
+  if (matrices_current_) return;
+  const int ne = static_cast<int>(geometries_.size());
+  mats_.resize(ne);
+#pragma omp parallel for schedule(static) num_threads(s.threads)
+  for (int e = 0; e < ne; ++e) fluid::mini_matrices(geometries_[e], s.fluid, s.thickness, s.gx, s.gy, mats_[e]);
+  matrices_current_ = true;
 }
 
 fluid::ElementState UnifiedStep::element_state(const mesh::FluidMesh& mesh, int e) const {
@@ -105,28 +116,23 @@ fluid::ElementState UnifiedStep::element_state(const mesh::FluidMesh& mesh, int 
   return st;
 }
 
-void UnifiedStep::residuals(const mesh::FluidMesh& mesh, const StepSettings& s) {
+void UnifiedStep::residuals(const mesh::FluidMesh& mesh) {
   rv_.setZero(n_v_);
   rp_.setZero(n_p_);
   rp_abs_.setZero(n_p_);
   mp_.setZero(n_p_);
-  const double inv_dt = 1.0 / s.dt;
   const int ne = static_cast<int>(mesh.triangles.size());
   for (int e = 0; e < ne; ++e) {
-    const auto& m = mats_[e];
+    const auto& r = element_residuals_[e];
     const auto& tri = mesh.triangles[e];
-    const fluid::ElementState st = element_state(mesh, e);
-    const auto [rv, rp] = fluid::element_residual(m, s.dt, st);
-    const fluid::Vec3 rp_abs =
-        m.Mp.cwiseProduct(st.p - st.pn).cwiseAbs() * inv_dt + m.G.cwiseAbs().transpose() * st.v.cwiseAbs();
     for (int a = 0; a < 3; ++a) {
       const int i = tri[a], dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];
-      if (dx >= 0) rv_[dx] += rv(2 * a);
-      if (dy >= 0) rv_[dy] += rv(2 * a + 1);
-      if (q >= 0) rp_[q] += rp(a), rp_abs_[q] += rp_abs(a), mp_[q] += m.Mp(a);
+      if (dx >= 0) rv_[dx] += r.rv(2 * a);
+      if (dy >= 0) rv_[dy] += r.rv(2 * a + 1);
+      if (q >= 0) rp_[q] += r.rp(a), rp_abs_[q] += r.rp_abs(a), mp_[q] += r.mp;
     }
     const int b = n_node_v_ + 2 * e;
-    rv_[b] += rv(6), rv_[b + 1] += rv(7);
+    rv_[b] += r.rv(6), rv_[b + 1] += r.rv(7);
   }
 }
 
@@ -142,6 +148,7 @@ std::array<int, 8> local_dofs(const std::array<std::int32_t, 3>& tri, const std:
 }  // namespace
 
 void UnifiedStep::factorize_global_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze) {
+  element_matrices(s);
   const int ne = static_cast<int>(mesh.triangles.size());
   std::vector<Eigen::Triplet<double>> kt, gt;
   kt.reserve(64 * ne);
@@ -239,6 +246,7 @@ void UnifiedStep::condensed_triplets(const mesh::FluidMesh& mesh, const StepSett
 }
 
 void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze) {
+  element_matrices(s);
   std::vector<Eigen::Triplet<double>> t;
   condensed_triplets(mesh, s, nullptr, bubbles_, t);
   matrix_.resize(n_node_v_ + n_p_, n_node_v_ + n_p_);
@@ -430,8 +438,8 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   for (int it = 0;; ++it) {
     if (cancel && cancel->load(std::memory_order_relaxed)) throw StepCancelled();
     auto t0 = Clock::now();
-    element_matrices(mesh, s);
-    residuals(mesh, s);
+    element_terms(mesh, s);
+    residuals(mesh);
     structure_residual(s);
     report.assemble_seconds += seconds_since(t0);
 
@@ -440,7 +448,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     // pressure scale, or against the round-off of its own terms, whichever is larger (in a
     // sliver dt/Mp is large and amplifies the round-off of G^T v).
     double f_scale = s_force_scale_ * s_force_scale_;  // the structure's, 0 without one
-    for (const auto& m : mats_) f_scale += m.F.squaredNorm();
+    for (const auto& r : element_residuals_) f_scale += r.f_squared;
     f_scale = std::sqrt(f_scale) + 1e-300;
     const double p_scale = std::max(p_.lpNorm<Eigen::Infinity>(), p_floor);
     const double r_v = rv_.norm() / f_scale;

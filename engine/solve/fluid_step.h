@@ -124,10 +124,13 @@ class UnifiedStep {
   void structure_residual(const StepSettings& s);
   // Entries of M/dt + C + dt dFs/du at the structure's unknowns.
   void add_structure_tangent(const StepSettings& s, const structure::AddEntry& put) const;
-  void element_matrices(const mesh::FluidMesh& mesh, const StepSettings& s);
+  // Every element's geometry and residual at the current iterate (in parallel).
+  void element_terms(const mesh::FluidMesh& mesh, const StepSettings& s);
+  // Every element's matrices at the geometry of the last element_terms (once per iterate).
+  void element_matrices(const StepSettings& s);
   fluid::ElementState element_state(const mesh::FluidMesh& mesh, int e) const;
-  // Residuals rv, rp (and the assembled Mp) at the current iterate.
-  void residuals(const mesh::FluidMesh& mesh, const StepSettings& s);
+  // Residuals rv, rp (and the assembled Mp) at the current iterate, from element_terms.
+  void residuals(const mesh::FluidMesh& mesh);
   // Assemble and factorise the Newton matrix of the chosen formulation at the current iterate.
   void factorize_global_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
   void factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
@@ -189,6 +192,8 @@ class UnifiedStep {
   Eigen::VectorXd rp_abs_;          // per pressure row: sum of the magnitudes of its terms
   std::vector<fluid::MiniMatrices> mats_;
   std::vector<fluid::TriangleGeometry> geometries_;  // per element, at the current iterate
+  std::vector<fluid::DirectResidual> element_residuals_;
+  bool matrices_current_ = false;  // mats_ at the geometry of geometries_
   std::vector<BubbleCondensation> bubbles_;  // of the last factorisation (kCondensedBubble)
   SparseMatrix matrix_, g_;
   Eigen::VectorXd factor_mp_;  // Mp at the last factorisation

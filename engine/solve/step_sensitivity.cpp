@@ -25,6 +25,7 @@ constexpr int kLuSteps = 50;
 }  // namespace
 
 void UnifiedStep::assemble_jacobian(const mesh::FluidMesh& mesh, const StepSettings& s, bool geometric_terms) {
+  element_matrices(s);
   const int ne = static_cast<int>(mesh.triangles.size());
   geometric_.resize(ne);
 #pragma omp parallel for schedule(static) num_threads(s.threads)

@@ -50,6 +50,28 @@ double relative_error(const A& a, const B& b) {
   return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
 }
 
+TEST(MiniSensitivity, DirectResidualEqualsTheMatrixProducts) {
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Case c = random_case(rng);
+    const TriangleGeometry g = triangle_geometry(c.x, c.y);
+    MiniMatrices m;
+    mini_matrices(g, c.f, c.t, c.gx, c.gy, m);
+    const ElementResidual r = element_residual(m, c.dt, c.s);
+    const DirectResidual direct = element_residual(g, c.f, c.t, c.gx, c.gy, c.dt, c.s);
+    // Each term's scale: the residual is a sum of terms much larger than itself.
+    const double v_scale = (m.M * ((c.s.v - c.s.vn) / c.dt)).cwiseAbs().maxCoeff() + (m.K * c.s.v).cwiseAbs().maxCoeff() +
+                           (m.G * c.s.p).cwiseAbs().maxCoeff() + m.F.cwiseAbs().maxCoeff();
+    EXPECT_LT((direct.rv - r.rv).cwiseAbs().maxCoeff(), 1e-14 * v_scale) << "trial " << trial;
+    const Vec3 rp_abs =
+        m.Mp.cwiseProduct(c.s.p - c.s.pn).cwiseAbs() / c.dt + m.G.cwiseAbs().transpose() * c.s.v.cwiseAbs();
+    EXPECT_LT((direct.rp - r.rp).cwiseAbs().maxCoeff(), 1e-14 * rp_abs.maxCoeff()) << "trial " << trial;
+    EXPECT_LT(relative_error(direct.rp_abs, rp_abs), 1e-14);
+    EXPECT_DOUBLE_EQ(direct.mp, m.Mp(0));
+    EXPECT_NEAR(direct.f_squared, m.F.squaredNorm(), 1e-14 * m.F.squaredNorm());
+  }
+}
+
 TEST(MiniSensitivity, GeometricDerivativesMatchFiniteDifferences) {
   std::mt19937 rng(7);
   for (int trial = 0; trial < 50; ++trial) {
