@@ -88,6 +88,10 @@ void SupernodalLdlt::analyze(const SparseMatrix& a) {
   cholmod_common common;
   cholmod_start(&common);
   common.supernodal = CHOLMOD_SUPERNODAL;
+  // AMD alone: CHOLMOD's default strategy (nmethods = 0) chose the same ordering here but took
+  // 12 % more of the factorisation time (the yielding obstacle to 0.3 s).
+  common.nmethods = 1;
+  common.method[0].ordering = CHOLMOD_AMD;
   cholmod_sparse pattern{};
   pattern.nrow = pattern.ncol = static_cast<std::size_t>(n_);
   pattern.nzmax = inner_.size();
