@@ -42,15 +42,7 @@ void SymmetricSolver::factorize(const SparseMatrix& a) {
 }
 
 Eigen::VectorXd SymmetricSolver::solve(const Eigen::VectorXd& b) const {
-  switch (impl_->backend) {
-    case SymmetricBackend::kEigenLdlt: return impl_->ldlt.solve(b);
-    case SymmetricBackend::kSupernodalLdlt: {
-      Eigen::VectorXd x = b;
-      impl_->supernodal.solve(x);
-      return x;
-    }
-    default: return impl_->cholmod.solve(b);
-  }
+  return solve(Eigen::MatrixXd(b)).col(0);
 }
 
 Eigen::MatrixXd SymmetricSolver::solve(const Eigen::MatrixXd& b) const {

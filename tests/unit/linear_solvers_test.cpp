@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 #include <random>
 #include <utility>
 #include <stdexcept>
@@ -82,17 +83,22 @@ double relative_residual(const SparseMatrix& a, const Eigen::MatrixXd& x, const 
   return (k * x - b).norm() / b.norm();
 }
 
+// A solver of the backend with a analysed and factorised.
+std::unique_ptr<SymmetricSolver> factorised(SymmetricBackend backend, const SparseMatrix& a) {
+  auto solver = std::make_unique<SymmetricSolver>(backend);
+  solver->analyze(a);
+  solver->factorize(a);
+  return solver;
+}
+
 constexpr int kGrid = 36;  // 3888 unknowns; the top separators are several panels wide
 
 TEST(SupernodalLdlt, SolvesAsCholmodSimplicial) {
   const SparseMatrix a = quasi_definite(kGrid, kGrid, 1);
   const Eigen::VectorXd b = random_rhs(static_cast<int>(a.rows()), 1, 2).col(0);
-  SymmetricSolver reference(SymmetricBackend::kCholmodLdlt), supernodal(SymmetricBackend::kSupernodalLdlt);
-  reference.analyze(a);
-  reference.factorize(a);
-  supernodal.analyze(a);
-  supernodal.factorize(a);
-  const Eigen::VectorXd x_ref = reference.solve(b), x = supernodal.solve(b);
+  const auto reference = factorised(SymmetricBackend::kCholmodLdlt, a);
+  const auto supernodal = factorised(SymmetricBackend::kSupernodalLdlt, a);
+  const Eigen::VectorXd x_ref = reference->solve(b), x = supernodal->solve(b);
   EXPECT_LT(relative_difference(x, x_ref), 1e-12);
   EXPECT_LT(relative_residual(a, x, b), 1e-13);
 }
@@ -100,16 +106,13 @@ TEST(SupernodalLdlt, SolvesAsCholmodSimplicial) {
 TEST(SupernodalLdlt, SolvesSeveralRightHandSides) {
   const SparseMatrix a = quasi_definite(kGrid, kGrid - 5, 3);
   const Eigen::MatrixXd b = random_rhs(static_cast<int>(a.rows()), 5, 4);
-  SymmetricSolver reference(SymmetricBackend::kCholmodLdlt), supernodal(SymmetricBackend::kSupernodalLdlt);
-  reference.analyze(a);
-  reference.factorize(a);
-  supernodal.analyze(a);
-  supernodal.factorize(a);
-  const Eigen::MatrixXd x_ref = reference.solve(b), x = supernodal.solve(b);
+  const auto reference = factorised(SymmetricBackend::kCholmodLdlt, a);
+  const auto supernodal = factorised(SymmetricBackend::kSupernodalLdlt, a);
+  const Eigen::MatrixXd x_ref = reference->solve(b), x = supernodal->solve(b);
   ASSERT_EQ(x.cols(), 5);
   for (int c = 0; c < 5; ++c) {
     EXPECT_LT(relative_difference(x.col(c), x_ref.col(c)), 1e-12) << "column " << c;
-    const Eigen::VectorXd one = supernodal.solve(Eigen::VectorXd(b.col(c)));
+    const Eigen::VectorXd one = supernodal->solve(Eigen::VectorXd(b.col(c)));
     EXPECT_EQ((one - x.col(c)).norm(), 0.0) << "column " << c;
   }
 }
@@ -125,10 +128,7 @@ TEST(SupernodalLdlt, RefactorisesNewValuesOnThePattern) {
   supernodal.factorize(a2);  // no new analysis
   const Eigen::VectorXd x2 = supernodal.solve(b);
   for (const auto* a : {&a1, &a2}) {
-    SymmetricSolver reference(SymmetricBackend::kCholmodLdlt);
-    reference.analyze(*a);
-    reference.factorize(*a);
-    EXPECT_LT(relative_difference(a == &a1 ? x1 : x2, reference.solve(b)), 1e-12);
+    EXPECT_LT(relative_difference(a == &a1 ? x1 : x2, factorised(SymmetricBackend::kCholmodLdlt, *a)->solve(b)), 1e-12);
   }
   EXPECT_GT(relative_difference(x2, x1), 1e-2);  // the values did change
 }
@@ -141,14 +141,13 @@ TEST(SupernodalLdlt, FactorisesAPatternOtherThanTheAnalysedOne) {
   pruned.prune([](int row, int col, double) { return row == col || (row + 7 * col) % 5 != 0; });
   ASSERT_LT(pruned.nonZeros(), full.nonZeros());
   const Eigen::VectorXd b = random_rhs(static_cast<int>(full.rows()), 1, 11).col(0);
-  using Pair = std::pair<const SparseMatrix*, const SparseMatrix*>;  // analysed, factorised
-  for (const auto& [analysed, factorised] : {Pair{&pruned, &full}, Pair{&full, &pruned}}) {
-    SymmetricSolver supernodal(SymmetricBackend::kSupernodalLdlt), reference(SymmetricBackend::kCholmodLdlt);
+  using Pair = std::pair<const SparseMatrix*, const SparseMatrix*>;  // analysed, then factorised
+  for (const auto& [analysed, values] : {Pair{&pruned, &full}, Pair{&full, &pruned}}) {
+    SymmetricSolver supernodal(SymmetricBackend::kSupernodalLdlt);
     supernodal.analyze(*analysed);
-    supernodal.factorize(*factorised);
-    reference.analyze(*factorised);
-    reference.factorize(*factorised);
-    EXPECT_LT(relative_difference(supernodal.solve(b), reference.solve(b)), 1e-12);
+    supernodal.factorize(*values);
+    const auto reference = factorised(SymmetricBackend::kCholmodLdlt, *values);
+    EXPECT_LT(relative_difference(supernodal.solve(b), reference->solve(b)), 1e-12);
   }
 }
 
