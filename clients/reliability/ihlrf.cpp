@@ -34,6 +34,7 @@ SearchOutcome search_ihlrf(StandardSpaceFunction& G, const Eigen::VectorXd& u0,
     return out;
   }
   const double g_scale = std::abs(g) > 0 ? std::abs(g) : 1.0;
+  bool stalled = false;  // the last line search found no decrease
   for (int k = 0;; ++k) {
     out.iterations = k;
     out.has_gradient = true;
@@ -85,8 +86,18 @@ SearchOutcome search_ihlrf(StandardSpaceFunction& G, const Eigen::VectorXd& u0,
         out.message = "g is not finite along the search direction at iteration " + std::to_string(k);
         return out;
       }
+      // A second search in a row without decrease: g varies more than its gradient says at
+      // every step tried (a PFEM response jumps where a remeshing decision changes), so the
+      // point cannot be refined; stop rather than creep with ever smaller steps.
+      if (stalled) {
+        out.message = "the line search found no decrease of the merit function at iterations " +
+                      std::to_string(k - 1) + " and " + std::to_string(k) +
+                      " (g is not smooth at this scale); the tolerance is tighter than g allows";
+        return out;
+      }
       // Take the smallest step tried: the merit function is flat to rounding here.
     }
+    stalled = !accepted;
     out.u = u_new;
     g = g_new;
     grad = grad_new;

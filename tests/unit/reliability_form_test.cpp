@@ -423,3 +423,33 @@ TEST(ReliabilityForm, NegativeBetaWhenTheMeanPointFails) {
   EXPECT_NEAR(r.beta, -6.5 / std::sqrt(4.65), 1e-8);
   EXPECT_NEAR(r.pf, 1.0 - phi_minus(6.5 / std::sqrt(4.65)), 1e-12);
 }
+
+// A limit state whose gradient disagrees with its values, as a PFEM response's exact gradient
+// does across a jump where a remeshing decision changes: g = 3 - x1, but dg/dx1 reported +1.
+// Every step along the search direction raises the merit function; iHL-RF stops after two line
+// searches without decrease instead of creeping on to max_iterations with
+// max_line_search_steps evaluations each.
+class MisleadingLimitState final : public rel::LimitState {
+ public:
+  std::size_t num_variables() const override { return 2; }
+  double evaluate(std::span<const double> x, std::span<double> gradient) const override {
+    if (!gradient.empty()) gradient[0] = 1.0, gradient[1] = 0.0;
+    return 3.0 - x[0];
+  }
+  bool provides_gradient() const override { return true; }
+  std::string gradient_source() const override { return "wrong on purpose"; }
+};
+
+TEST(ReliabilityForm, IhlrfStopsWhenTheLineSearchFindsNoDecreaseTwice) {
+  const MisleadingLimitState g;
+  const rel::NatafTransform t({Distribution::normal(0.0, 1.0), Distribution::normal(0.0, 1.0)},
+                              Eigen::MatrixXd::Identity(2, 2));
+  rel::FormOptions options;
+  options.start_u = {0.5, 0.5};
+  const rel::FormResult r = rel::run_form(g, t, options);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.message.find("no decrease of the merit function at iterations 0 and 1"), std::string::npos)
+      << r.message;
+  EXPECT_EQ(r.iterations, 1);
+  EXPECT_EQ(r.evaluations, 1 + 2 * options.max_line_search_steps);
+}
