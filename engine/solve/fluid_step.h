@@ -25,7 +25,9 @@
 //    and a P1 stencil: an order of magnitude faster.
 // The tangent omits the geometric terms H, T (a modified Newton); one factorisation per step
 // serves all iterations unless convergence stalls, and the residual is driven to a tight
-// relative tolerance because the DDM is exact only at the converged state.
+// relative tolerance because the DDM is exact only at the converged state. The structure's
+// unknowns are eliminated last, so that its tangent (which jumps as fibers yield or unload) is
+// refreshed at every iterate by refactorising only the trailing dense block.
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -40,6 +42,7 @@
 #include "engine/mesh/remesher.h"
 #include "engine/solve/linear_solvers.h"
 #include "engine/solve/node_state.h"
+#include "engine/solve/supernodal_ldlt.h"
 #include "engine/structure/structure_model.h"
 
 namespace pfem {
@@ -124,6 +127,11 @@ class UnifiedStep {
   void structure_residual(const StepSettings& s);
   // Entries of M/dt + C + dt dFs/du at the structure's unknowns.
   void add_structure_tangent(const StepSettings& s, const structure::AddEntry& put) const;
+  // Those entries in the lower triangle, at the current trial state.
+  std::vector<Eigen::Triplet<double>> structure_tangent_lower(const StepSettings& s) const;
+  // The condensed factorisation with the structure's part at the current iterate (the fluid's
+  // part stays that of the last factorisation); false when it cannot be updated so.
+  bool update_structure_tangent(const StepSettings& s);
   // Every element's geometry and residual at the current iterate (in parallel).
   void element_terms(const mesh::FluidMesh& mesh, const StepSettings& s);
   // Every element's matrices at the geometry of the last element_terms (once per iterate).
@@ -198,7 +206,8 @@ class UnifiedStep {
   SparseMatrix matrix_, g_;
   Eigen::VectorXd factor_mp_;  // Mp at the last factorisation
   SymmetricSolver global_solver_{SymmetricBackend::kCholmodLlt};
-  SymmetricSolver condensed_solver_{SymmetricBackend::kSupernodalLdlt};
+  SupernodalLdlt condensed_solver_;
+  std::vector<Eigen::Triplet<double>> factor_structure_;  // the structure's entries last factorised
   // DDM: bubble sensitivities (2 x P) at t_n per element and of the last step by triangle; the
   // solved sensitivities of the unknowns (one column per parameter).
   using BubbleSensitivity = Eigen::Matrix<double, 2, Eigen::Dynamic>;

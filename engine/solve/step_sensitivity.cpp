@@ -114,7 +114,11 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
   if (lu_steps_left_ > 0) --lu_steps_left_;
   if (iterative) {
     const LinearOperator apply = [this](const Eigen::VectorXd& x) -> Eigen::VectorXd { return jacobian_ * x; };
-    const LinearOperator precondition = [this](const Eigen::VectorXd& x) { return condensed_solver_.solve(x); };
+    const LinearOperator precondition = [this](const Eigen::VectorXd& x) {
+      Eigen::VectorXd y = x;
+      condensed_solver_.solve(y);
+      return y;
+    };
     const CondensedSolve solve = [&](const Eigen::MatrixXd& b) {
       Eigen::MatrixXd x(b.rows(), b.cols());
       for (long c = 0; c < b.cols() && iterative; ++c) {

@@ -1,6 +1,6 @@
 #include "engine/solve/supernodal_ldlt.h"
 
-#include <cholmod.h>
+#include "engine/solve/supernodal_symbolic.h"
 
 #include <algorithm>
 #include <cmath>
@@ -77,53 +77,23 @@ bool factor_supernode(double* x, int nsrow, int nscol, double* d, double* w) {
 
 }  // namespace
 
-void SupernodalLdlt::analyze(const SparseMatrix& a) {
+void SupernodalLdlt::analyze(const SparseMatrix& a, std::span<const int> group, std::span<const int> last) {
   if (a.rows() != a.cols() || !a.isCompressed())
     throw std::invalid_argument("SupernodalLdlt needs a square, compressed matrix");
+  SupernodalStructure structure = supernodal_symbolic(a, group, last);
   n_ = static_cast<int>(a.rows());
   outer_.assign(a.outerIndexPtr(), a.outerIndexPtr() + n_ + 1);
   inner_.assign(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
-
-  // CHOLMOD's ordering (AMD, as for its simplicial LDL^T) and supernodal symbolic factorisation.
-  cholmod_common common;
-  cholmod_start(&common);
-  common.supernodal = CHOLMOD_SUPERNODAL;
-  // AMD alone: CHOLMOD's default strategy (nmethods = 0) chose the same ordering here but took
-  // 12 % more of the factorisation time (the yielding obstacle to 0.3 s).
-  common.nmethods = 1;
-  common.method[0].ordering = CHOLMOD_AMD;
-  cholmod_sparse pattern{};
-  pattern.nrow = pattern.ncol = static_cast<std::size_t>(n_);
-  pattern.nzmax = inner_.size();
-  pattern.p = const_cast<int*>(a.outerIndexPtr());
-  pattern.i = const_cast<int*>(a.innerIndexPtr());
-  pattern.stype = -1;  // the lower triangle
-  pattern.itype = CHOLMOD_INT;
-  pattern.xtype = CHOLMOD_PATTERN;
-  pattern.dtype = CHOLMOD_DOUBLE;
-  pattern.sorted = 1;
-  pattern.packed = 1;
-  cholmod_factor* l = cholmod_analyze(&pattern, &common);
-  if (!l || common.status < CHOLMOD_OK || !l->is_super) {
-    if (l) cholmod_free_factor(&l, &common);
-    cholmod_finish(&common);
-    throw std::runtime_error("CHOLMOD's supernodal analysis failed");
-  }
-  nsuper_ = static_cast<int>(l->nsuper);
-  const auto* perm = static_cast<const int*>(l->Perm);
-  const auto* super = static_cast<const int*>(l->super);
-  const auto* pi = static_cast<const int*>(l->pi);
-  const auto* px = static_cast<const int*>(l->px);
-  const auto* s = static_cast<const int*>(l->s);
-  perm_.assign(perm, perm + n_);
-  super_.assign(super, super + nsuper_ + 1);
-  pi_.assign(pi, pi + nsuper_ + 1);
-  px_.assign(px, px + nsuper_ + 1);
-  ls_.assign(s, s + pi_[nsuper_]);
-  lx_.resize(static_cast<std::size_t>(l->xsize));
-  max_update_ = static_cast<long>(l->maxcsize);
-  cholmod_free_factor(&l, &common);
-  cholmod_finish(&common);
+  group_.assign(group.begin(), group.end());
+  last_.assign(last.begin(), last.end());
+  perm_ = std::move(structure.perm);
+  super_ = std::move(structure.super);
+  pi_ = std::move(structure.pi);
+  px_ = std::move(structure.px);
+  ls_ = std::move(structure.rows);
+  first_trailing_ = structure.first_trailing;
+  nsuper_ = static_cast<int>(super_.size()) - 1;
+  lx_.resize(static_cast<std::size_t>(px_[nsuper_]));
 
   super_of_col_.resize(n_);
   max_rows_ = max_cols_ = 0;
@@ -136,21 +106,21 @@ void SupernodalLdlt::analyze(const SparseMatrix& a) {
   // Where each entry of a's lower triangle goes in the factor: entry (i, j) is entry
   // (max, min) of the permuted matrix, whose column lies in one supernode. First the permuted
   // lower triangle by columns (a transpose-like bucket pass), then each supernode's columns.
-  std::vector<int> iperm(n_);
-  for (int k = 0; k < n_; ++k) iperm[perm_[k]] = k;
+  iperm_.resize(n_);
+  for (int k = 0; k < n_; ++k) iperm_[perm_[k]] = k;
   const int* outer = a.outerIndexPtr();
   const int* inner = a.innerIndexPtr();
   std::vector<int> start(n_ + 1, 0);
   for (int j = 0; j < n_; ++j)
     for (int p = outer[j]; p < outer[j + 1]; ++p)
-      if (inner[p] >= j) ++start[std::min(iperm[inner[p]], iperm[j]) + 1];
+      if (inner[p] >= j) ++start[std::min(iperm_[inner[p]], iperm_[j]) + 1];
   for (int k = 0; k < n_; ++k) start[k + 1] += start[k];
   const int lower = start[n_];
   std::vector<int> row(lower), src(lower), slot(start.begin(), start.end() - 1);
   for (int j = 0; j < n_; ++j)
     for (int p = outer[j]; p < outer[j + 1]; ++p) {
       if (inner[p] < j) continue;
-      const int pr = iperm[inner[p]], pc = iperm[j];
+      const int pr = iperm_[inner[p]], pc = iperm_[j];
       const int q = slot[std::min(pr, pc)]++;
       row[q] = std::max(pr, pc);
       src[q] = p;
@@ -172,6 +142,55 @@ void SupernodalLdlt::analyze(const SparseMatrix& a) {
   }
   entry_start_[nsuper_] = t;
   d_.resize(n_);
+  ws_.local.assign(n_, 0);
+  ws_.relative.assign(max_rows_, 0);
+  ws_.head.assign(nsuper_, -1);
+  ws_.next.assign(nsuper_, -1);
+  ws_.lpos.assign(nsuper_, 0);
+  ws_.update.resize(static_cast<std::size_t>(max_rows_) * max_cols_ + 1);
+  ws_.w.resize(static_cast<std::size_t>(max_cols_) * max_cols_ + 1);
+}
+
+void SupernodalLdlt::apply_update(int d, int s, double* xs, Workspace& ws) {
+  const int k2 = super_[s + 1], nsrow = static_cast<int>(pi_[s + 1] - pi_[s]);
+  const long pdi = pi_[d], pdend = pi_[d + 1];
+  const int ndrow = static_cast<int>(pdend - pdi), ndcol = super_[d + 1] - super_[d];
+  const long pdi1 = pdi + ws.lpos[d];
+  long pdi2 = pdi1;
+  while (pdi2 < pdend && ls_[pdi2] < k2) ++pdi2;
+  const int ndrow1 = static_cast<int>(pdi2 - pdi1), ndrow2 = static_cast<int>(pdend - pdi1);
+  const std::size_t update_size = static_cast<std::size_t>(ndrow1) * ndrow2;
+  if (update_size > ws.update.size()) ws.update.resize(update_size);
+  // update (ndrow2 x ndrow1) = L_d(rows from pdi1) D_d L_d(rows pdi1..pdi2)^T
+  const double* ld = lx_.data() + px_[d] + (pdi1 - pdi);
+  const double* dd = d_.data() + super_[d];
+  double* w = ws.w.data();
+  for (int j = 0; j < ndcol; ++j)
+    for (int i = 0; i < ndrow1; ++i) w[i + j * ndrow1] = ld[i + static_cast<long>(j) * ndrow] * dd[j];
+  gemm_nt(ndrow2, ndrow1, ndcol, 1.0, ld, ndrow, w, ndrow1, 0.0, ws.update.data(), ndrow2);
+  int* relative = ws.relative.data();
+  for (int i = 0; i < ndrow2; ++i) relative[i] = ws.local[ls_[pdi1 + i]];
+  for (int j = 0; j < ndrow1; ++j) {
+    double* col = xs + static_cast<long>(relative[j]) * nsrow;
+    const double* u = ws.update.data() + static_cast<long>(j) * ndrow2;
+    for (int i = j; i < ndrow2; ++i) col[relative[i]] -= u[i];
+  }
+  // d's next target is the supernode of its first row past s.
+  ws.lpos[d] = static_cast<int>(pdi2 - pdi);
+  if (pdi2 < pdend) {
+    const int target = super_of_col_[ls_[pdi2]];
+    ws.next[d] = ws.head[target];
+    ws.head[target] = d;
+  }
+}
+
+void SupernodalLdlt::link(int s, Workspace& ws) const {
+  const int nscol = super_[s + 1] - super_[s];
+  if (pi_[s + 1] - pi_[s] == nscol) return;
+  ws.lpos[s] = nscol;
+  const int target = super_of_col_[ls_[pi_[s] + nscol]];
+  ws.next[s] = ws.head[target];
+  ws.head[target] = s;
 }
 
 bool SupernodalLdlt::factorize(const SparseMatrix& a) {
@@ -179,64 +198,77 @@ bool SupernodalLdlt::factorize(const SparseMatrix& a) {
   const bool same_pattern = a.rows() == n_ && a.nonZeros() == static_cast<long>(inner_.size()) &&
                             std::equal(outer_.begin(), outer_.end(), a.outerIndexPtr()) &&
                             std::equal(inner_.begin(), inner_.end(), a.innerIndexPtr());
-  if (!same_pattern) analyze(a);
+  if (!same_pattern) analyze(a, std::vector<int>(group_), std::vector<int>(last_));
   const double* values = a.valuePtr();
   // Left-looking: supernode s gathers its entries of a, then the updates of every earlier
   // supernode d with rows in s's columns. Supernodes waiting to update s are linked from
-  // head[s] (next[] chains them); lpos[d] is where d's next rows to use start.
-  std::vector<int> local(n_), relative(max_rows_), head(nsuper_, -1), next(nsuper_, -1), lpos(nsuper_, 0);
-  std::vector<double> update(std::max(max_update_, 1L)), w(static_cast<std::size_t>(max_cols_) * max_cols_ + 1);
+  // head[s] (next[] chains them); lpos[d] is where d's next rows to use start. The trailing
+  // supernodes only collect a's entries and the leading ones' updates here (kept for
+  // update_last).
+  std::fill(ws_.head.begin(), ws_.head.end(), -1);
   double* lx = lx_.data();
   for (int s = 0; s < nsuper_; ++s) {
-    const int k1 = super_[s], k2 = super_[s + 1], nscol = k2 - k1;
+    const int nscol = super_[s + 1] - super_[s];
     const long psi = pi_[s];
     const int nsrow = static_cast<int>(pi_[s + 1] - psi);
     double* xs = lx + px_[s];
     std::fill(xs, xs + static_cast<long>(nsrow) * nscol, 0.0);
     for (long q = entry_start_[s]; q < entry_start_[s + 1]; ++q) lx[entry_dst_[q]] = values[entry_src_[q]];
-    for (int i = 0; i < nsrow; ++i) local[ls_[psi + i]] = i;
-
-    for (int d = head[s]; d >= 0;) {
-      const int dnext = next[d];
-      const long pdi = pi_[d], pdend = pi_[d + 1];
-      const int ndrow = static_cast<int>(pdend - pdi), ndcol = super_[d + 1] - super_[d];
-      const long pdi1 = pdi + lpos[d];
-      long pdi2 = pdi1;
-      while (pdi2 < pdend && ls_[pdi2] < k2) ++pdi2;
-      const int ndrow1 = static_cast<int>(pdi2 - pdi1), ndrow2 = static_cast<int>(pdend - pdi1);
-      const std::size_t update_size = static_cast<std::size_t>(ndrow1) * ndrow2;
-      if (update_size > update.size()) update.resize(update_size);  // CHOLMOD's maxcsize should cover it
-      // update (ndrow2 x ndrow1) = L_d(rows from pdi1) D_d L_d(rows pdi1..pdi2)^T
-      const double* ld = lx + px_[d] + (pdi1 - pdi);
-      const double* dd = d_.data() + super_[d];
-      for (int j = 0; j < ndcol; ++j)
-        for (int i = 0; i < ndrow1; ++i) w[i + j * ndrow1] = ld[i + static_cast<long>(j) * ndrow] * dd[j];
-      gemm_nt(ndrow2, ndrow1, ndcol, 1.0, ld, ndrow, w.data(), ndrow1, 0.0, update.data(), ndrow2);
-      for (int i = 0; i < ndrow2; ++i) relative[i] = local[ls_[pdi1 + i]];
-      for (int j = 0; j < ndrow1; ++j) {
-        double* col = xs + static_cast<long>(relative[j]) * nsrow;
-        const double* u = update.data() + static_cast<long>(j) * ndrow2;
-        for (int i = j; i < ndrow2; ++i) col[relative[i]] -= u[i];
-      }
-      // d's next target is the supernode of its first row past s.
-      lpos[d] = static_cast<int>(pdi2 - pdi);
-      if (pdi2 < pdend) {
-        const int target = super_of_col_[ls_[pdi2]];
-        next[d] = head[target];
-        head[target] = d;
-      }
+    for (int i = 0; i < nsrow; ++i) ws_.local[ls_[psi + i]] = i;
+    for (int d = ws_.head[s]; d >= 0;) {
+      const int dnext = ws_.next[d];
+      apply_update(d, s, xs, ws_);
       d = dnext;
     }
+    if (s >= first_trailing_) continue;
+    if (!factor_supernode(xs, nsrow, nscol, d_.data() + super_[s], ws_.w.data())) return false;
+    link(s, ws_);
+  }
+  trailing_sums_.assign(lx + px_[first_trailing_], lx + lx_.size());
+  return factorize_trailing({});
+}
 
-    if (!factor_supernode(xs, nsrow, nscol, d_.data() + k1, w.data())) return false;
-    if (nsrow > nscol) {
-      lpos[s] = nscol;
-      const int target = super_of_col_[ls_[psi + nscol]];
-      next[s] = head[target];
-      head[target] = s;
+bool SupernodalLdlt::factorize_trailing(std::span<const std::pair<long, double>> additions) {
+  if (first_trailing_ == nsuper_) return true;
+  double* lx = lx_.data();
+  std::copy(trailing_sums_.begin(), trailing_sums_.end(), lx + px_[first_trailing_]);
+  for (const auto& [position, value] : additions) lx[position] += value;
+  std::fill(ws_.head.begin() + first_trailing_, ws_.head.end(), -1);
+  for (int s = first_trailing_; s < nsuper_; ++s) {
+    const int nscol = super_[s + 1] - super_[s];
+    const long psi = pi_[s];
+    const int nsrow = static_cast<int>(pi_[s + 1] - psi);
+    double* xs = lx + px_[s];
+    for (int i = 0; i < nsrow; ++i) ws_.local[ls_[psi + i]] = i;
+    for (int d = ws_.head[s]; d >= 0;) {
+      const int dnext = ws_.next[d];
+      apply_update(d, s, xs, ws_);
+      d = dnext;
     }
+    if (!factor_supernode(xs, nsrow, nscol, d_.data() + super_[s], ws_.w.data())) return false;
+    link(s, ws_);
   }
   return true;
+}
+
+bool SupernodalLdlt::update_last(std::span<const Eigen::Triplet<double>> delta) {
+  const int first_column = super_[first_trailing_];
+  std::vector<std::pair<long, double>> additions;
+  additions.reserve(delta.size());
+  for (const auto& e : delta) {
+    if (e.row() < e.col()) continue;
+    if (e.row() >= n_ || e.col() < 0) throw std::invalid_argument("SupernodalLdlt::update_last: entry out of range");
+    const int pr = iperm_[e.row()], pc = iperm_[e.col()];
+    const int col = std::min(pr, pc), row = std::max(pr, pc);
+    if (col < first_column) return false;
+    const int k = super_of_col_[col];
+    const int* rows = ls_.data() + pi_[k];
+    const int nsrow = static_cast<int>(pi_[k + 1] - pi_[k]);
+    const int* found = std::find(rows, rows + nsrow, row);
+    if (found == rows + nsrow) return false;
+    additions.emplace_back(px_[k] + static_cast<long>(col - super_[k]) * nsrow + (found - rows), e.value());
+  }
+  return factorize_trailing(additions);
 }
 
 void SupernodalLdlt::solve(Eigen::Ref<Eigen::MatrixXd> b) const {

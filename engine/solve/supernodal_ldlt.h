@@ -2,12 +2,19 @@
 // Supernodal LDL^T without pivoting, for the symmetric quasi-definite [A B; B^T -C] Newton
 // matrix of the fluid (A, C positive definite: any symmetric permutation has an LDL^T).
 // CHOLMOD's supernodal factorisation is LL^T only, which stops at the first negative pivot, and
-// its simplicial LDL^T works a column at a time; this class takes CHOLMOD's supernodal symbolic
-// analysis (fill-reducing permutation, supernodes and their row patterns) and does the numeric
-// LDL^T itself with dense blocks (BLAS dgemm for the updates between supernodes, dtrsm for the
-// off-diagonal rows of wide ones). Any pivot that is zero or not finite fails the factorisation.
+// its simplicial LDL^T works a column at a time; this class does the numeric LDL^T with dense
+// blocks (BLAS dgemm for the updates between supernodes, dtrsm for the off-diagonal rows of wide
+// ones) on the symbolic analysis of supernodal_symbolic.h, which orders the mesh's nodes rather
+// than its unknowns. Any pivot that is zero or not finite fails the factorisation.
+//
+// Unknowns named at analysis are ordered last (CAMD): a change of the matrix confined to them
+// (the structure's tangent, between Newton iterations) then touches only the trailing supernodes,
+// which update_last refactorises from the kept updates of the others at the cost of a small
+// dense block.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <span>
+#include <utility>
 #include <vector>
 
 namespace pfem {
@@ -17,20 +24,41 @@ class SupernodalLdlt {
   using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
   // Ordering and supernodal symbolic factorisation of the lower triangle of a (which must be
-  // compressed). Throws std::runtime_error if CHOLMOD fails.
-  void analyze(const SparseMatrix& a);
+  // compressed), on the graph of the groups of unknowns (group[k] of unknown k; empty: each
+  // unknown alone), the groups holding an unknown of `last` ordered after all others.
+  void analyze(const SparseMatrix& a, std::span<const int> group = {}, std::span<const int> last = {});
   // Numeric factorisation of a (compressed). A pattern other than the analysed one (the
   // structure's tangent leaves out exact zeros, so it can change within a step) is analysed
-  // first. Returns false on a zero or non-finite pivot (the factor is then unusable).
+  // first, with the same groups and `last`. Returns false on a zero or non-finite pivot (the
+  // factor is then unusable).
   bool factorize(const SparseMatrix& a);
+  // Factorises the last factorised matrix plus delta, whose entries (lower triangle, repeated
+  // ones summed) all lie between unknowns named `last`: only the trailing supernodes are redone.
+  // Returns false on a zero or non-finite pivot, or when an entry of delta has no place in the
+  // factor (then factorise the whole matrix).
+  bool update_last(std::span<const Eigen::Triplet<double>> delta);
   // Solves in place for each column of b (n rows).
   void solve(Eigen::Ref<Eigen::MatrixXd> b) const;
 
  private:
+  struct Workspace {
+    std::vector<int> local, relative, head, next, lpos;
+    std::vector<double> update, w;
+  };
+  // Subtracts from supernode s (values xs; ws.local maps its rows to positions) the update of
+  // the factorised supernode d from d's rows at ws.lpos[d] on, then links d to its next target.
+  void apply_update(int d, int s, double* xs, Workspace& ws);
+  // Links the factorised supernode s to the first supernode its off-diagonal rows update.
+  void link(int s, Workspace& ws) const;
+  // The trailing supernodes from their kept sums (a's entries and the leading supernodes'
+  // updates) plus the (position, value) additions.
+  bool factorize_trailing(std::span<const std::pair<long, double>> additions);
+
   int n_ = 0;
   int nsuper_ = 0;
   std::vector<int> outer_, inner_;  // the analysed pattern
-  std::vector<int> perm_;           // row k of the factor is row perm_[k] of a
+  std::vector<int> group_, last_;   // as analysed
+  std::vector<int> perm_, iperm_;   // row k of the factor is row perm_[k] of a
   std::vector<int> super_;          // supernode s holds columns super_[s] .. super_[s+1]-1
   std::vector<int> super_of_col_;   // the supernode of each column
   std::vector<long> pi_, px_;       // starts of each supernode's row indices (in ls_) and values (in lx_)
@@ -38,10 +66,12 @@ class SupernodalLdlt {
   std::vector<int> entry_src_;      // a's lower entries (indices into its values), grouped by supernode ...
   std::vector<long> entry_dst_;     // ... and where each goes in lx_
   std::vector<long> entry_start_;   // supernode s owns entries entry_start_[s] .. entry_start_[s+1]-1
-  long max_update_ = 0;             // largest update block (rows x columns) between two supernodes
   int max_rows_ = 0, max_cols_ = 0;
   std::vector<double> lx_;          // supernodal L (unit diagonal implied), column-major blocks
   std::vector<double> d_;           // the diagonal D
+  int first_trailing_ = 0;          // the first supernode holding an unknown of last_ (nsuper_ if none)
+  std::vector<double> trailing_sums_;  // lx_ from px_[first_trailing_] on before their factorisation
+  Workspace ws_;
 };
 
 }  // namespace pfem

@@ -2,7 +2,8 @@
 // matrices shaped like the fluid's (a 2D grid, three unknowns per node: two velocity components
 // in the positive definite block, the pressure in the negative definite one): same solutions to
 // round-off for one and several right-hand sides and after refactorising new values on the same
-// pattern; a zero pivot throws as with the other backends.
+// pattern; a zero pivot throws as with the other backends. Unknowns ordered last (the structure's)
+// take a change of their block without a full refactorisation.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "engine/solve/linear_solvers.h"
+#include "engine/solve/supernodal_ldlt.h"
 
 namespace pfem {
 namespace {
@@ -149,6 +151,96 @@ TEST(SupernodalLdlt, FactorisesAPatternOtherThanTheAnalysedOne) {
     const auto reference = factorised(SymmetricBackend::kCholmodLdlt, *values);
     EXPECT_LT(relative_difference(supernodal.solve(b), reference->solve(b)), 1e-12);
   }
+}
+
+// The group of each unknown of the grid matrix: its node (numbered from the last node down).
+std::vector<int> node_groups(int nodes) {
+  std::vector<int> group(3 * nodes);
+  for (int k = 0; k < 3 * nodes; ++k) group[k] = nodes - 1 - k / 3;
+  return group;
+}
+
+// The analysis on the graph of the nodes orders and eliminates a node's unknowns together: the
+// same solution.
+TEST(SupernodalLdlt, AnalysisOnTheNodesSolvesAsOnTheUnknowns) {
+  const SparseMatrix a = quasi_definite(kGrid, kGrid, 15);
+  const Eigen::MatrixXd b = random_rhs(static_cast<int>(a.rows()), 1, 16);
+  SupernodalLdlt by_node;
+  by_node.analyze(a, node_groups(kGrid * kGrid));
+  ASSERT_TRUE(by_node.factorize(a));
+  Eigen::MatrixXd x = b;
+  by_node.solve(x);
+  EXPECT_LT(relative_difference(x, factorised(SymmetricBackend::kCholmodLdlt, a)->solve(b)), 1e-12);
+  EXPECT_LT(relative_residual(a, x, b), 1e-13);
+}
+
+// The velocity unknowns of the grid's middle column of nodes (a beam through the water).
+std::vector<int> beam_unknowns(int nx, int ny) {
+  std::vector<int> last;
+  for (int j = 0; j < ny; ++j)
+    for (int c = 0; c < 2; ++c) last.push_back(3 * (j * nx + nx / 2) + c);
+  return last;
+}
+
+// A symmetric change among the unknowns `last` (lower triangle): their diagonal grows, and two
+// of them far apart in the grid (no entry of the matrix) are coupled.
+std::vector<Eigen::Triplet<double>> change_among(const std::vector<int>& last) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t k = 0; k < last.size(); ++k) t.emplace_back(last[k], last[k], 0.5 + 0.1 * static_cast<double>(k % 7));
+  t.emplace_back(std::max(last.front(), last.back()), std::min(last.front(), last.back()), 0.3);
+  return t;
+}
+
+SparseMatrix matrix_of(const std::vector<Eigen::Triplet<double>>& t, int n) {
+  SparseMatrix m(n, n);
+  m.setFromTriplets(t.begin(), t.end());
+  return m;
+}
+
+TEST(SupernodalLdlt, UnknownsOrderedLastTakeAChangeOfTheirBlock) {
+  const SparseMatrix a = quasi_definite(kGrid, kGrid, 12);
+  const int n = static_cast<int>(a.rows());
+  const std::vector<int> last = beam_unknowns(kGrid, kGrid);
+  const std::vector<Eigen::Triplet<double>> delta = change_among(last);
+  const Eigen::MatrixXd b = random_rhs(n, 2, 13);
+  SupernodalLdlt ldlt;
+  ldlt.analyze(a, node_groups(kGrid * kGrid), last);
+  ASSERT_TRUE(ldlt.factorize(a));
+  Eigen::MatrixXd x = b;
+  ldlt.solve(x);
+  EXPECT_LT(relative_difference(x, factorised(SymmetricBackend::kCholmodLdlt, a)->solve(b)), 1e-12);
+
+  // The change, twice (each relative to the matrix last factorised), then back to none.
+  const SparseMatrix changed = a + matrix_of(delta, n);
+  const Eigen::MatrixXd x_changed = factorised(SymmetricBackend::kCholmodLdlt, changed)->solve(b);
+  EXPECT_GT(relative_difference(x_changed, x), 1e-3);
+  for (int repeat = 0; repeat < 2; ++repeat) {
+    ASSERT_TRUE(ldlt.update_last(delta));
+    x = b;
+    ldlt.solve(x);
+    EXPECT_LT(relative_difference(x, x_changed), 1e-12) << "update " << repeat;
+  }
+  ASSERT_TRUE(ldlt.update_last({}));
+  x = b;
+  ldlt.solve(x);
+  EXPECT_LT(relative_difference(x, factorised(SymmetricBackend::kCholmodLdlt, a)->solve(b)), 1e-12);
+}
+
+TEST(SupernodalLdlt, RefusesAChangeOutsideTheLastUnknowns) {
+  const SparseMatrix a = quasi_definite(20, 20, 14);
+  const int n = static_cast<int>(a.rows());
+  SupernodalLdlt ldlt;
+  ldlt.analyze(a, {}, beam_unknowns(20, 20));
+  ASSERT_TRUE(ldlt.factorize(a));
+  const std::vector<Eigen::Triplet<double>> corner{{0, 0, 1.0}};  // a velocity unknown of a corner node
+  EXPECT_FALSE(ldlt.update_last(corner));
+  // Without unknowns ordered last every change is refused.
+  SupernodalLdlt plain;
+  plain.analyze(a);
+  ASSERT_TRUE(plain.factorize(a));
+  EXPECT_FALSE(plain.update_last(change_among(beam_unknowns(20, 20))));
+  EXPECT_THROW(ldlt.analyze(a, {}, std::vector<int>{n}), std::invalid_argument);
+  EXPECT_THROW(ldlt.analyze(a, std::vector<int>(n - 1, 0)), std::invalid_argument);
 }
 
 // The message of a failed factorisation, or "" when it succeeds.

@@ -1,0 +1,269 @@
+#include "engine/solve/supernodal_symbolic.h"
+
+#include <amd.h>
+#include <camd.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace pfem {
+namespace {
+
+// CHOLMOD's default relaxation: a supernode and its parent merge if the result has at most
+// kRelaxColumns[0] columns, or at most kRelaxColumns[i] columns and a fraction of explicit zeros
+// below kRelaxZeros[i - 1], or any width and fewer zeros than kRelaxZeros[2].
+constexpr int kRelaxColumns[3] = {4, 16, 48};
+constexpr double kRelaxZeros[3] = {0.8, 0.1, 0.05};
+
+// Entries of a supernode's lower trapezoid: c columns, r rows (its own columns included).
+double trapezoid(long c, long r) { return static_cast<double>(c) * r - 0.5 * static_cast<double>(c) * (c - 1); }
+
+// Lists indexed by a node: the items of node k are item[start[k]] .. item[start[k+1]-1].
+struct Lists {
+  std::vector<int> start, item;
+  int size(int k) const { return start[k + 1] - start[k]; }
+  const int* begin(int k) const { return item.data() + start[k]; }
+  const int* end(int k) const { return item.data() + start[k + 1]; }
+};
+
+// The symmetric graph of the groups from the lower triangle (both directions, no self loops,
+// each list sorted and without repeats).
+Lists group_graph(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& lower, const std::vector<int>& g, int ng) {
+  const int n = static_cast<int>(lower.cols());
+  const int* outer = lower.outerIndexPtr();
+  const int* inner = lower.innerIndexPtr();
+  std::vector<int> start(ng + 1, 0);
+  for (int j = 0; j < n; ++j)
+    for (int p = outer[j]; p < outer[j + 1]; ++p)
+      if (inner[p] > j && g[inner[p]] != g[j]) ++start[g[inner[p]] + 1], ++start[g[j] + 1];
+  for (int k = 0; k < ng; ++k) start[k + 1] += start[k];
+  std::vector<int> item(start[ng]), slot(start.begin(), start.end() - 1);
+  for (int j = 0; j < n; ++j)
+    for (int p = outer[j]; p < outer[j + 1]; ++p) {
+      const int a = g[inner[p]], b = g[j];
+      if (inner[p] > j && a != b) item[slot[a]++] = b, item[slot[b]++] = a;
+    }
+  Lists graph;
+  graph.start.assign(ng + 1, 0);
+  graph.item.reserve(item.size() / 4);
+  std::vector<int> mark(ng, -1);
+  for (int k = 0; k < ng; ++k) {
+    for (int p = start[k]; p < start[k + 1]; ++p)
+      if (mark[item[p]] != k) mark[item[p]] = k, graph.item.push_back(item[p]);
+    graph.start[k + 1] = static_cast<int>(graph.item.size());
+    std::sort(graph.item.begin() + graph.start[k], graph.item.end());
+  }
+  return graph;
+}
+
+// Children of each node of a forest (ascending), from the parents (-1 at a root).
+Lists children_of(const std::vector<int>& parent) {
+  const int n = static_cast<int>(parent.size());
+  Lists children;
+  children.start.assign(n + 1, 0);
+  for (int k = 0; k < n; ++k)
+    if (parent[k] >= 0) ++children.start[parent[k] + 1];
+  for (int k = 0; k < n; ++k) children.start[k + 1] += children.start[k];
+  children.item.resize(children.start[n]);
+  std::vector<int> slot(children.start.begin(), children.start.end() - 1);
+  for (int k = 0; k < n; ++k)
+    if (parent[k] >= 0) children.item[slot[parent[k]]++] = k;
+  return children;
+}
+
+// A supernode while relaxing: groups first .. last-1, unknown columns and rows (its own
+// columns included), explicit zeros, and the group whose factor column gives its rows below.
+struct Super {
+  int first, last;
+  long columns, rows;
+  double zeros;
+};
+
+}  // namespace
+
+SupernodalStructure supernodal_symbolic(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& lower,
+                                        std::span<const int> group, std::span<const int> last) {
+  const int n = static_cast<int>(lower.cols());
+  if (lower.rows() != n || !lower.isCompressed())
+    throw std::invalid_argument("supernodal_symbolic needs a square, compressed matrix");
+  if (!group.empty() && static_cast<int>(group.size()) != n)
+    throw std::invalid_argument("supernodal_symbolic: one group per unknown");
+
+  // Groups numbered 0 .. ng-1 in order of first appearance, and their unknowns.
+  std::vector<int> g(n);
+  int ng = 0;
+  if (group.empty()) {
+    for (int k = 0; k < n; ++k) g[k] = k;
+    ng = n;
+  } else {
+    const int max_id = n > 0 ? *std::max_element(group.begin(), group.end()) : -1;
+    if (n > 0 && *std::min_element(group.begin(), group.end()) < 0)
+      throw std::invalid_argument("supernodal_symbolic: a negative group");
+    std::vector<int> compact(max_id + 1, -1);
+    for (int k = 0; k < n; ++k) {
+      int& c = compact[group[k]];
+      if (c < 0) c = ng++;
+      g[k] = c;
+    }
+  }
+  Lists members;
+  members.start.assign(ng + 1, 0);
+  for (int k = 0; k < n; ++k) ++members.start[g[k] + 1];
+  for (int k = 0; k < ng; ++k) members.start[k + 1] += members.start[k];
+  members.item.resize(n);
+  {
+    std::vector<int> slot(members.start.begin(), members.start.end() - 1);
+    for (int k = 0; k < n; ++k) members.item[slot[g[k]]++] = k;
+  }
+  std::vector<int> trailing(ng, 0);
+  for (const int k : last) {
+    if (k < 0 || k >= n) throw std::invalid_argument("supernodal_symbolic: a last unknown out of range");
+    trailing[g[k]] = 1;
+  }
+  const bool constrained = std::find(trailing.begin(), trailing.end(), 1) != trailing.end();
+
+  // Fill-reducing order of the groups.
+  const Lists graph = group_graph(lower, g, ng);
+  std::vector<int> order(ng);
+  if (ng > 0) {
+    const int status = constrained ? camd_order(ng, graph.start.data(), graph.item.data(), order.data(), nullptr,
+                                                nullptr, trailing.data())
+                                   : amd_order(ng, graph.start.data(), graph.item.data(), order.data(), nullptr, nullptr);
+    if (status < AMD_OK) throw std::runtime_error("the fill-reducing ordering (AMD) failed");
+  }
+  std::vector<int> position(ng);
+  for (int k = 0; k < ng; ++k) position[order[k]] = k;
+
+  // Elimination tree in that order (Liu's algorithm, with path compression).
+  std::vector<int> parent(ng, -1), ancestor(ng, -1);
+  for (int k = 0; k < ng; ++k)
+    for (const int* h = graph.begin(order[k]); h != graph.end(order[k]); ++h) {
+      for (int i = position[*h]; i < k;) {
+        const int next = ancestor[i];
+        ancestor[i] = k;
+        if (next < 0) parent[i] = k;
+        if (next < 0 || next == k) break;
+        i = next;
+      }
+    }
+
+  // Postorder (each subtree's groups consecutive, so supernodes are), the groups that come last
+  // kept after all others and in their order: a topological order of the tree, same fill.
+  std::vector<int> post;
+  post.reserve(ng);
+  {
+    std::vector<int> forest(parent);
+    for (int k = 0; k < ng; ++k)
+      if (trailing[order[k]] || (forest[k] >= 0 && trailing[order[forest[k]]])) forest[k] = -1;
+    const Lists children = children_of(forest);
+    std::vector<int> next_child(children.start.begin(), children.start.end() - 1), stack;
+    for (int root = 0; root < ng; ++root) {
+      if (forest[root] >= 0 || trailing[order[root]]) continue;
+      stack.push_back(root);
+      while (!stack.empty()) {
+        const int top = stack.back();
+        if (next_child[top] < children.start[top + 1]) {
+          stack.push_back(children.item[next_child[top]++]);
+        } else {
+          stack.pop_back();
+          post.push_back(top);
+        }
+      }
+    }
+    for (int k = 0; k < ng; ++k)
+      if (trailing[order[k]]) post.push_back(k);
+  }
+  std::vector<int> label(ng), gorder(ng), tree(ng, -1);  // label of each group, group of each label
+  for (int m = 0; m < ng; ++m) gorder[m] = order[post[m]], label[order[post[m]]] = m;
+  for (int m = 0; m < ng; ++m)
+    if (parent[post[m]] >= 0) tree[m] = label[order[parent[post[m]]]];
+
+  // Rows of each group's factor column (labels below the diagonal): its own later neighbours
+  // and its children's rows.
+  const Lists children = children_of(tree);
+  Lists column;
+  column.start.assign(ng + 1, 0);
+  std::vector<int> mark(ng, -1);
+  for (int m = 0; m < ng; ++m) {
+    mark[m] = m;
+    for (const int* h = graph.begin(gorder[m]); h != graph.end(gorder[m]); ++h)
+      if (const int r = label[*h]; r > m && mark[r] != m) mark[r] = m, column.item.push_back(r);
+    for (const int* c = children.begin(m); c != children.end(m); ++c)
+      for (int q = column.start[*c]; q < column.start[*c + 1]; ++q)  // by index: the list grows
+        if (const int r = column.item[q]; mark[r] != m) mark[r] = m, column.item.push_back(r);
+    column.start[m + 1] = static_cast<int>(column.item.size());
+    std::sort(column.item.begin() + column.start[m], column.item.end());
+  }
+
+  // Unknowns per label, fundamental supernodes (a chain of only children with nested columns),
+  // then relaxed (a supernode merges into the next when that holds its parent).
+  std::vector<long> width(ng + 1, 0);  // unknowns before each label
+  for (int m = 0; m < ng; ++m) width[m + 1] = width[m] + members.size(gorder[m]);
+  const auto below = [&](int m) {  // unknowns in the rows below group column m
+    long rows = 0;
+    for (const int* r = column.begin(m); r != column.end(m); ++r) rows += width[*r + 1] - width[*r];
+    return rows;
+  };
+  std::vector<Super> supers;
+  for (int m = 0; m < ng; ++m) {
+    const bool continues = m > 0 && tree[m - 1] == m && children.size(m) == 1 &&
+                           column.size(m - 1) == column.size(m) + 1 && trailing[gorder[m - 1]] == trailing[gorder[m]];
+    if (continues) {
+      supers.back().last = m + 1;
+      supers.back().columns += width[m + 1] - width[m];
+      supers.back().rows = supers.back().columns + below(m);
+      continue;
+    }
+    const long columns = width[m + 1] - width[m];
+    Super f{m, m + 1, columns, columns + below(m), 0.0};
+    if (!supers.empty()) {
+      Super& c = supers.back();
+      const int up = tree[c.last - 1];
+      // f may still grow into a fundamental chain: merge decisions are taken on the final f, so
+      // look ahead to where f's chain ends.
+      int end = m + 1;
+      while (end < ng && tree[end - 1] == end && children.size(end) == 1 && column.size(end - 1) == column.size(end) + 1 &&
+             trailing[gorder[end - 1]] == trailing[gorder[end]])
+        ++end;
+      if (up >= m && up < end && trailing[gorder[c.last - 1]] == trailing[gorder[m]]) {
+        const long fc = width[end] - width[m], fr = fc + below(end - 1);
+        const long columns_merged = c.columns + fc, rows_merged = c.columns + fr;
+        const double entries = trapezoid(columns_merged, rows_merged);
+        const double zeros = entries - (trapezoid(c.columns, c.rows) - c.zeros) - trapezoid(fc, fr);
+        const double fraction = zeros / entries;
+        if (columns_merged <= kRelaxColumns[0] || (columns_merged <= kRelaxColumns[1] && fraction < kRelaxZeros[0]) ||
+            (columns_merged <= kRelaxColumns[2] && fraction < kRelaxZeros[1]) || fraction < kRelaxZeros[2]) {
+          c.last = end;
+          c.columns = columns_merged;
+          c.rows = rows_merged;
+          c.zeros = zeros;
+          m = end - 1;
+          continue;
+        }
+      }
+    }
+    supers.push_back(f);
+  }
+
+  // Expanded to the unknowns.
+  SupernodalStructure out;
+  out.perm.reserve(n);
+  for (int m = 0; m < ng; ++m) out.perm.insert(out.perm.end(), members.begin(gorder[m]), members.end(gorder[m]));
+  out.super.push_back(0);
+  out.pi.push_back(0);
+  out.px.push_back(0);
+  out.first_trailing = static_cast<int>(supers.size());
+  for (const Super& s : supers) {
+    if (trailing[gorder[s.first]] && out.first_trailing == static_cast<int>(supers.size()))
+      out.first_trailing = static_cast<int>(out.super.size()) - 1;
+    for (long k = width[s.first]; k < width[s.last]; ++k) out.rows.push_back(static_cast<int>(k));
+    for (const int* r = column.begin(s.last - 1); r != column.end(s.last - 1); ++r)
+      for (long k = width[*r]; k < width[*r + 1]; ++k) out.rows.push_back(static_cast<int>(k));
+    out.super.push_back(static_cast<int>(width[s.last]));
+    out.pi.push_back(static_cast<long>(out.rows.size()));
+    out.px.push_back(out.px.back() + s.columns * (out.pi.back() - out.pi[out.pi.size() - 2]));
+  }
+  return out;
+}
+
+}  // namespace pfem
