@@ -185,87 +185,141 @@ void UnifiedStep::correct_global_bubble(const StepSettings& s) {
   p_ += dp_star - (s.dt * (g_.transpose() * dv).array() / factor_mp_.array()).matrix();
 }
 
+void UnifiedStep::condense_element(int e, const StepSettings& s, const fluid::GeometricDerivatives* geometric,
+                                   BubbleCondensation& b, CondensedElement& k) const {
+  const auto& m = mats_[e];
+  // Element Jacobian -d(rv, rp)/d(v, p): [a -G; Q G_b^T Mp/dt] with a = M/dt + K - dt drv/dx and
+  // Q = G_c^T - dt drp/dx (the coordinates move with the corner velocities, x = x_n + dt v).
+  fluid::Mat8 a = m.M * (1.0 / s.dt) + m.K;
+  Eigen::Matrix<double, 3, 6> q = m.G.block<6, 3>(0, 0).transpose();
+  if (geometric) {
+    a.leftCols<6>() -= s.dt * geometric->drv_dx;
+    q -= s.dt * geometric->drp_dx;
+  }
+  b.inv_bb = a.block<2, 2>(6, 6).inverse();
+  b.a_bc = a.block<2, 6>(6, 0);
+  b.a_cb = a.block<6, 2>(0, 6);
+  b.g_b = m.G.block<2, 3>(6, 0);
+  // Element Schur complements with dvb = Abb^-1 (r_b - A_bc dvc + G_b dp):
+  // A' = A_cc - A_cb Abb^-1 A_bc, G' = G_c - A_cb Abb^-1 G_b (velocity rows),
+  // Q' = Q - G_b^T Abb^-1 A_bc, C = G_b^T Abb^-1 G_b (pressure rows, negated).
+  const Eigen::Matrix<double, 6, 2> acb_inv = b.a_cb * b.inv_bb;
+  const Eigen::Matrix<double, 2, 3> inv_gb = b.inv_bb * b.g_b;
+  k.topLeftCorner<6, 6>() = a.block<6, 6>(0, 0) - acb_inv * b.a_bc;
+  k.topRightCorner<6, 3>() = acb_inv * b.g_b - m.G.block<6, 3>(0, 0);
+  k.bottomLeftCorner<3, 6>() = inv_gb.transpose() * b.a_bc - q;
+  k.bottomRightCorner<3, 3>() = -(b.g_b.transpose() * inv_gb);
+}
+
+std::array<int, 9> UnifiedStep::element_unknowns(const std::array<std::int32_t, 3>& tri) const {
+  std::array<int, 9> u;
+  for (int c = 0; c < 3; ++c) {
+    u[2 * c] = vx_dof_[tri[c]], u[2 * c + 1] = vy_dof_[tri[c]];
+    u[6 + c] = pdof_[tri[c]] >= 0 ? n_node_v_ + pdof_[tri[c]] : -1;
+  }
+  return u;
+}
+
 void UnifiedStep::condensed_triplets(const mesh::FluidMesh& mesh, const StepSettings& s,
-                                     const std::vector<fluid::GeometricDerivatives>* geometric,
+                                     const std::vector<fluid::GeometricDerivatives>& geometric,
                                      std::vector<BubbleCondensation>& bubbles,
                                      std::vector<Eigen::Triplet<double>>& t) const {
   const int ne = static_cast<int>(mesh.triangles.size());
   bubbles.resize(ne);
-  // The response's matrix is symmetric and its solver reads the lower triangle only: half the
-  // entries to sort and store. The DDM's Jacobian (with H and T) is not symmetric.
-  const bool lower_only = geometric == nullptr;
-  const auto put = [&t, lower_only](int row, int col, double value) {
-    if (!lower_only || row >= col) t.emplace_back(row, col, value);
-  };
-  t.reserve(t.size() + (lower_only ? 45 : 81) * ne + n_p_);
-  const double inv_dt = 1.0 / s.dt;
+  t.reserve(t.size() + 81 * ne + n_p_);
+  CondensedElement k;
   for (int e = 0; e < ne; ++e) {
-    const auto& m = mats_[e];
-    const auto& tri = mesh.triangles[e];
-    // Element Jacobian -d(rv, rp)/d(v, p): [a -G; Q G_b^T Mp/dt] with a = M/dt + K - dt drv/dx and
-    // Q = G_c^T - dt drp/dx (the coordinates move with the corner velocities, x = x_n + dt v).
-    fluid::Mat8 a = m.M * inv_dt + m.K;
-    Eigen::Matrix<double, 3, 6> q = m.G.block<6, 3>(0, 0).transpose();
-    if (geometric) {
-      a.leftCols<6>() -= s.dt * (*geometric)[e].drv_dx;
-      q -= s.dt * (*geometric)[e].drp_dx;
-    }
-    auto& b = bubbles[e];
-    b.inv_bb = a.block<2, 2>(6, 6).inverse();
-    b.a_bc = a.block<2, 6>(6, 0);
-    b.a_cb = a.block<6, 2>(0, 6);
-    b.g_b = m.G.block<2, 3>(6, 0);
-    // Element Schur complements with dvb = Abb^-1 (r_b - A_bc dvc + G_b dp):
-    // A' = A_cc - A_cb Abb^-1 A_bc, G' = G_c - A_cb Abb^-1 G_b (velocity rows),
-    // Q' = Q - G_b^T Abb^-1 A_bc, C = G_b^T Abb^-1 G_b (pressure rows, negated below).
-    const Eigen::Matrix<double, 6, 2> acb_inv = b.a_cb * b.inv_bb;
-    const Eigen::Matrix<double, 2, 3> inv_gb = b.inv_bb * b.g_b;
-    const Eigen::Matrix<double, 6, 6> ac = a.block<6, 6>(0, 0) - acb_inv * b.a_bc;
-    const Eigen::Matrix<double, 6, 3> gc = m.G.block<6, 3>(0, 0) - acb_inv * b.g_b;
-    const Eigen::Matrix<double, 3, 6> qc = q - inv_gb.transpose() * b.a_bc;
-    const Eigen::Matrix3d cp = b.g_b.transpose() * inv_gb;
-    std::array<int, 6> dof;
-    std::array<int, 3> pdof;
-    for (int k = 0; k < 3; ++k) {
-      dof[2 * k] = vx_dof_[tri[k]], dof[2 * k + 1] = vy_dof_[tri[k]];
-      pdof[k] = pdof_[tri[k]] >= 0 ? n_node_v_ + pdof_[tri[k]] : -1;
-    }
-    for (int r = 0; r < 6; ++r) {
-      if (dof[r] < 0) continue;
-      for (int c = 0; c < 6; ++c)
-        if (dof[c] >= 0) put(dof[r], dof[c], ac(r, c));
-      for (int k = 0; k < 3; ++k)
-        if (pdof[k] >= 0) put(dof[r], pdof[k], -gc(r, k)), put(pdof[k], dof[r], -qc(k, r));
-    }
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        if (pdof[r] >= 0 && pdof[c] >= 0) put(pdof[r], pdof[c], -cp(r, c));
+    condense_element(e, s, &geometric[e], bubbles[e], k);
+    const std::array<int, 9> u = element_unknowns(mesh.triangles[e]);
+    for (int r = 0; r < 9; ++r)
+      for (int c = 0; c < 9; ++c)
+        if (u[r] >= 0 && u[c] >= 0) t.emplace_back(u[r], u[c], k(r, c));
   }
-  for (int q = 0; q < n_p_; ++q) put(n_node_v_ + q, n_node_v_ + q, -mp_[q] * inv_dt);
-  add_structure_tangent(s, put);
+  for (int q = 0; q < n_p_; ++q) t.emplace_back(n_node_v_ + q, n_node_v_ + q, -mp_[q] / s.dt);
+  add_structure_tangent(s, [&t](int row, int col, double value) { t.emplace_back(row, col, value); });
+}
+
+namespace {
+// The corner pairs of a triangle whose blocks the symmetric Newton matrix needs once each: rows
+// of the first corner, columns of the second.
+constexpr std::array<std::array<int, 2>, 6> kCornerPairs{{{0, 0}, {1, 1}, {2, 2}, {1, 0}, {2, 0}, {2, 1}}};
+}  // namespace
+
+void UnifiedStep::analyze_condensed(const mesh::FluidMesh& mesh, const StepSettings& s) {
+  // The unknowns of a node (velocities, pressure, a structure node's rotation) as one group,
+  // coupled to the nodes it shares a triangle or a beam element with.
+  const int n = n_node_v_ + n_p_;
+  std::vector<int> node_of(n, -1), structure_unknowns;
+  for (std::size_t i = 0; i < vx_dof_.size(); ++i) {
+    if (vx_dof_[i] >= 0) node_of[vx_dof_[i]] = static_cast<int>(i);
+    if (vy_dof_[i] >= 0) node_of[vy_dof_[i]] = static_cast<int>(i);
+    if (pdof_[i] >= 0) node_of[n_node_v_ + pdof_[i]] = static_cast<int>(i);
+  }
+  for (std::size_t j = 0; j < s_dof_.size(); ++j)
+    if (const int d = s_dof_[j]; d >= 0) node_of[d] = s.structure.node[j / 3], structure_unknowns.push_back(d);
+  std::vector<std::array<int, 2>> couplings;
+  couplings.reserve(3 * mesh.triangles.size());
+  for (const auto& tri : mesh.triangles) couplings.push_back({tri[0], tri[1]}), couplings.push_back({tri[1], tri[2]}),
+                                         couplings.push_back({tri[2], tri[0]});
+  if (const auto* model = s.structure.model)
+    for (int e = 0; e < model->num_elements(); ++e) {
+      const auto [i, j] = model->element(e).nodes();
+      couplings.push_back({s.structure.node[i], s.structure.node[j]});
+    }
+  condensed_solver_.analyze(n, node_of, couplings, structure_unknowns);
+
+  // Each unknown's rank among its node's unknowns, the first unknown of each node, and where
+  // each triangle's blocks and each pressure's diagonal go in the factor.
+  slot_.resize(n);
+  std::vector<int> first(vx_dof_.size(), -1), count(vx_dof_.size(), 0);
+  for (int u = 0; u < n; ++u) {
+    const int i = node_of[u];
+    if (first[i] < 0) first[i] = u;
+    slot_[u] = count[i]++;
+  }
+  const int ne = static_cast<int>(mesh.triangles.size());
+  element_blocks_.resize(ne);
+  for (int e = 0; e < ne; ++e) {
+    const auto& tri = mesh.triangles[e];
+    for (std::size_t p = 0; p < kCornerPairs.size(); ++p) {
+      const int row0 = first[tri[kCornerPairs[p][0]]], col0 = first[tri[kCornerPairs[p][1]]];
+      element_blocks_[e][p] = row0 >= 0 && col0 >= 0 ? condensed_solver_.block(row0, col0) : SupernodalLdlt::Block{-1, 0, 0};
+    }
+  }
+  pressure_diagonal_.resize(n_p_);
+  for (int q = 0; q < n_p_; ++q) pressure_diagonal_[q] = condensed_solver_.block(n_node_v_ + q, n_node_v_ + q).base;
 }
 
 void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze) {
+  // The symmetric matrix is added straight into the factor's storage, a triangle's blocks at
+  // the places found by the analysis: no triplets to sort, no matrix to build.
   element_matrices(s);
-  std::vector<Eigen::Triplet<double>> t;
-  condensed_triplets(mesh, s, nullptr, bubbles_, t);
-  matrix_.resize(n_node_v_ + n_p_, n_node_v_ + n_p_);
-  matrix_.setFromTriplets(t.begin(), t.end());
-  if (analyze) {
-    // The unknowns of a node (velocities, pressure, a structure node's rotation) as one group.
-    std::vector<int> node_of(matrix_.rows(), -1), structure_unknowns;
-    for (std::size_t i = 0; i < vx_dof_.size(); ++i) {
-      if (vx_dof_[i] >= 0) node_of[vx_dof_[i]] = static_cast<int>(i);
-      if (vy_dof_[i] >= 0) node_of[vy_dof_[i]] = static_cast<int>(i);
-      if (pdof_[i] >= 0) node_of[n_node_v_ + pdof_[i]] = static_cast<int>(i);
+  if (analyze) analyze_condensed(mesh, s);
+  condensed_solver_.zero_values();
+  double* lx = condensed_solver_.values();
+  const int ne = static_cast<int>(mesh.triangles.size());
+  bubbles_.resize(ne);
+  CondensedElement k;
+  for (int e = 0; e < ne; ++e) {
+    condense_element(e, s, nullptr, bubbles_[e], k);
+    const std::array<int, 9> u = element_unknowns(mesh.triangles[e]);
+    for (std::size_t p = 0; p < kCornerPairs.size(); ++p) {
+      const SupernodalLdlt::Block& b = element_blocks_[e][p];
+      if (b.base < 0) continue;
+      const int rc = kCornerPairs[p][0], cc = kCornerPairs[p][1];
+      for (const int r : {2 * rc, 2 * rc + 1, 6 + rc}) {
+        if (u[r] < 0) continue;
+        const long row = b.base + slot_[u[r]] * b.row_step;
+        for (const int c : {2 * cc, 2 * cc + 1, 6 + cc})
+          if (u[c] >= 0) lx[row + slot_[u[c]] * b.col_step] += k(r, c);
+      }
     }
-    for (std::size_t j = 0; j < s_dof_.size(); ++j)
-      if (const int d = s_dof_[j]; d >= 0) node_of[d] = s.structure.node[j / 3], structure_unknowns.push_back(d);
-    condensed_solver_.analyze(matrix_, node_of, structure_unknowns);
   }
-  if (!condensed_solver_.factorize(matrix_))
-    throw StepFailure("the Newton matrix could not be factorised (zero or wrong-signed pivot)");
+  for (int q = 0; q < n_p_; ++q) lx[pressure_diagonal_[q]] -= mp_[q] / s.dt;
   factor_structure_ = structure_tangent_lower(s);
+  for (const auto& t : factor_structure_) lx[condensed_solver_.block(t.row(), t.col()).base] += t.value();
+  if (!condensed_solver_.factorize_values())
+    throw StepFailure("the Newton matrix could not be factorised (zero or wrong-signed pivot)");
 }
 
 std::vector<Eigen::Triplet<double>> UnifiedStep::structure_tangent_lower(const StepSettings& s) const {

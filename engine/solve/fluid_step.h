@@ -142,12 +142,22 @@ class UnifiedStep {
   // Assemble and factorise the Newton matrix of the chosen formulation at the current iterate.
   void factorize_global_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
   void factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze);
-  // Triplets of the bubble-condensed [v; p] matrix (pressure rows negated) and each element's
-  // condensation. Without geometric derivatives it is symmetric and only its lower triangle is
-  // emitted; with them (the DDM) it is the exact Jacobian, dt H and dt T included, in full.
+  // An element's bubble-condensed matrix in its corner unknowns (velocities x0 y0 x1 y1 x2 y2,
+  // then pressures 0 1 2; pressure rows negated) and its condensation; with the geometric
+  // derivatives (the DDM) the exact Jacobian, dt H and dt T included, otherwise symmetric.
+  using CondensedElement = Eigen::Matrix<double, 9, 9>;
+  void condense_element(int e, const StepSettings& s, const fluid::GeometricDerivatives* geometric,
+                        BubbleCondensation& b, CondensedElement& k) const;
+  // The unknowns of a triangle's corners in that order (-1 where there is none).
+  std::array<int, 9> element_unknowns(const std::array<std::int32_t, 3>& tri) const;
+  // Triplets of the exact Jacobian (the condensed matrix with H and T, in full) and each
+  // element's condensation.
   void condensed_triplets(const mesh::FluidMesh& mesh, const StepSettings& s,
-                          const std::vector<fluid::GeometricDerivatives>* geometric,
+                          const std::vector<fluid::GeometricDerivatives>& geometric,
                           std::vector<BubbleCondensation>& bubbles, std::vector<Eigen::Triplet<double>>& t) const;
+  // The condensed matrix's symbolic analysis on the graph of the mesh nodes, and where each
+  // triangle's blocks go in the factor.
+  void analyze_condensed(const mesh::FluidMesh& mesh, const StepSettings& s);
   // Solves the condensed system held by `solve` for right-hand sides in the full unknowns
   // (velocity rows rv, bubbles included, and pressure rows rp; one column each), returning the
   // solutions dv (bubbles recovered) and dp.
@@ -207,6 +217,9 @@ class UnifiedStep {
   Eigen::VectorXd factor_mp_;  // Mp at the last factorisation
   SymmetricSolver global_solver_{SymmetricBackend::kCholmodLlt};
   SupernodalLdlt condensed_solver_;
+  std::vector<int> slot_;  // per condensed unknown: its rank among its node's unknowns
+  std::vector<std::array<SupernodalLdlt::Block, 6>> element_blocks_;  // per triangle and corner pair
+  std::vector<long> pressure_diagonal_;  // per pressure unknown: its diagonal in the factor
   std::vector<Eigen::Triplet<double>> factor_structure_;  // the structure's entries last factorised
   // DDM: bubble sensitivities (2 x P) at t_n per element and of the last step by triangle; the
   // solved sensitivities of the unknowns (one column per parameter).

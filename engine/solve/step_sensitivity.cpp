@@ -39,7 +39,7 @@ void UnifiedStep::assemble_jacobian(const mesh::FluidMesh& mesh, const StepSetti
     }
   }
   std::vector<Eigen::Triplet<double>> t;
-  condensed_triplets(mesh, s, &geometric_, jacobian_bubbles_, t);
+  condensed_triplets(mesh, s, geometric_, jacobian_bubbles_, t);
   jacobian_.resize(n_node_v_ + n_p_, n_node_v_ + n_p_);
   jacobian_.setFromTriplets(t.begin(), t.end());
 }

@@ -3,6 +3,7 @@
 #include "engine/solve/supernodal_symbolic.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <stdexcept>
@@ -77,24 +78,18 @@ bool factor_supernode(double* x, int nsrow, int nscol, double* d, double* w) {
 
 }  // namespace
 
-void SupernodalLdlt::analyze(const SparseMatrix& a, std::span<const int> group, std::span<const int> last) {
-  if (a.rows() != a.cols() || !a.isCompressed())
-    throw std::invalid_argument("SupernodalLdlt needs a square, compressed matrix");
-  SupernodalStructure structure = supernodal_symbolic(a, group, last);
-  n_ = static_cast<int>(a.rows());
-  outer_.assign(a.outerIndexPtr(), a.outerIndexPtr() + n_ + 1);
-  inner_.assign(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
-  group_.assign(group.begin(), group.end());
-  last_.assign(last.begin(), last.end());
+void SupernodalLdlt::take_structure(SupernodalStructure&& structure) {
   perm_ = std::move(structure.perm);
   super_ = std::move(structure.super);
   pi_ = std::move(structure.pi);
   px_ = std::move(structure.px);
   ls_ = std::move(structure.rows);
   first_trailing_ = structure.first_trailing;
+  n_ = static_cast<int>(perm_.size());
   nsuper_ = static_cast<int>(super_.size()) - 1;
   lx_.resize(static_cast<std::size_t>(px_[nsuper_]));
-
+  iperm_.resize(n_);
+  for (int k = 0; k < n_; ++k) iperm_[perm_[k]] = k;
   super_of_col_.resize(n_);
   max_rows_ = max_cols_ = 0;
   for (int k = 0; k < nsuper_; ++k) {
@@ -102,45 +97,6 @@ void SupernodalLdlt::analyze(const SparseMatrix& a, std::span<const int> group, 
     max_cols_ = std::max(max_cols_, super_[k + 1] - super_[k]);
     max_rows_ = std::max(max_rows_, static_cast<int>(pi_[k + 1] - pi_[k]));
   }
-
-  // Where each entry of a's lower triangle goes in the factor: entry (i, j) is entry
-  // (max, min) of the permuted matrix, whose column lies in one supernode. First the permuted
-  // lower triangle by columns (a transpose-like bucket pass), then each supernode's columns.
-  iperm_.resize(n_);
-  for (int k = 0; k < n_; ++k) iperm_[perm_[k]] = k;
-  const int* outer = a.outerIndexPtr();
-  const int* inner = a.innerIndexPtr();
-  std::vector<int> start(n_ + 1, 0);
-  for (int j = 0; j < n_; ++j)
-    for (int p = outer[j]; p < outer[j + 1]; ++p)
-      if (inner[p] >= j) ++start[std::min(iperm_[inner[p]], iperm_[j]) + 1];
-  for (int k = 0; k < n_; ++k) start[k + 1] += start[k];
-  const int lower = start[n_];
-  std::vector<int> row(lower), src(lower), slot(start.begin(), start.end() - 1);
-  for (int j = 0; j < n_; ++j)
-    for (int p = outer[j]; p < outer[j + 1]; ++p) {
-      if (inner[p] < j) continue;
-      const int pr = iperm_[inner[p]], pc = iperm_[j];
-      const int q = slot[std::min(pr, pc)]++;
-      row[q] = std::max(pr, pc);
-      src[q] = p;
-    }
-  entry_src_.resize(lower);
-  entry_dst_.resize(lower);
-  entry_start_.assign(nsuper_ + 1, 0);
-  std::vector<int> local(n_, -1);  // row index -> position in the current supernode
-  int t = 0;
-  for (int k = 0; k < nsuper_; ++k) {
-    entry_start_[k] = t;
-    const int k1 = super_[k], nsrow = static_cast<int>(pi_[k + 1] - pi_[k]);
-    for (int i = 0; i < nsrow; ++i) local[ls_[pi_[k] + i]] = i;
-    for (int c = k1; c < super_[k + 1]; ++c)
-      for (int q = start[c]; q < start[c + 1]; ++q, ++t) {
-        entry_src_[t] = src[q];
-        entry_dst_[t] = px_[k] + static_cast<long>(c - k1) * nsrow + local[row[q]];
-      }
-  }
-  entry_start_[nsuper_] = t;
   d_.resize(n_);
   ws_.local.assign(n_, 0);
   ws_.relative.assign(max_rows_, 0);
@@ -150,6 +106,69 @@ void SupernodalLdlt::analyze(const SparseMatrix& a, std::span<const int> group, 
   ws_.update.resize(static_cast<std::size_t>(max_rows_) * max_cols_ + 1);
   ws_.w.resize(static_cast<std::size_t>(max_cols_) * max_cols_ + 1);
 }
+
+void SupernodalLdlt::analyze(int n, std::span<const int> group, std::span<const std::array<int, 2>> couplings,
+                             std::span<const int> last) {
+  take_structure(supernodal_symbolic(n, group, couplings, last));
+  group_.assign(group.begin(), group.end());
+  last_.assign(last.begin(), last.end());
+  outer_.clear();
+  inner_.clear();
+  entry_src_.clear();
+  entry_dst_.clear();
+}
+
+void SupernodalLdlt::analyze(const SparseMatrix& a, std::span<const int> group, std::span<const int> last) {
+  if (a.rows() != a.cols() || !a.isCompressed())
+    throw std::invalid_argument("SupernodalLdlt needs a square, compressed matrix");
+  const int n = static_cast<int>(a.rows());
+  if (!group.empty() && static_cast<int>(group.size()) != n)
+    throw std::invalid_argument("SupernodalLdlt: one group per unknown");
+  const int* outer = a.outerIndexPtr();
+  const int* inner = a.innerIndexPtr();
+  const auto id = [&group](int k) { return group.empty() ? k : group[k]; };
+  std::vector<std::array<int, 2>> couplings;
+  couplings.reserve(a.nonZeros());
+  for (int j = 0; j < n; ++j)
+    for (int p = outer[j]; p < outer[j + 1]; ++p)
+      if (inner[p] > j) couplings.push_back({id(inner[p]), id(j)});
+  analyze(n, group, couplings, last);
+  outer_.assign(outer, outer + n + 1);
+  inner_.assign(inner, inner + a.nonZeros());
+  // Where each entry of a's lower triangle goes in the factor.
+  for (int j = 0; j < n; ++j)
+    for (int p = outer[j]; p < outer[j + 1]; ++p) {
+      if (inner[p] < j) continue;
+      entry_src_.push_back(p);
+      entry_dst_.push_back(find_position(inner[p], j));
+    }
+}
+
+long SupernodalLdlt::find_position(int row, int col) const {
+  const int pr = iperm_[row], pc = iperm_[col];
+  const int c = std::min(pr, pc), r = std::max(pr, pc);
+  const int k = super_of_col_[c];
+  const int nscol = super_[k + 1] - super_[k], nsrow = static_cast<int>(pi_[k + 1] - pi_[k]);
+  int local = r - super_[k];  // the supernode's own columns come first, in order
+  if (r >= super_[k + 1]) {
+    const int* rows = ls_.data() + pi_[k];
+    const int* found = std::lower_bound(rows + nscol, rows + nsrow, r);
+    if (found == rows + nsrow || *found != r) return -1;
+    local = static_cast<int>(found - rows);
+  }
+  return px_[k] + static_cast<long>(c - super_[k]) * nsrow + local;
+}
+
+SupernodalLdlt::Block SupernodalLdlt::block(int row0, int col0) const {
+  const long position = find_position(row0, col0);
+  if (position < 0) throw std::logic_error("SupernodalLdlt::block: the groups were not coupled at analysis");
+  const int pr = iperm_[row0], pc = iperm_[col0];
+  const int k = super_of_col_[std::min(pr, pc)];
+  const long nsrow = pi_[k + 1] - pi_[k];
+  return pr >= pc ? Block{position, 1, nsrow} : Block{position, nsrow, 1};
+}
+
+void SupernodalLdlt::zero_values() { std::fill(lx_.begin(), lx_.end(), 0.0); }
 
 void SupernodalLdlt::apply_update(int d, int s, double* xs, Workspace& ws) {
   const int k2 = super_[s + 1], nsrow = static_cast<int>(pi_[s + 1] - pi_[s]);
@@ -199,21 +218,23 @@ bool SupernodalLdlt::factorize(const SparseMatrix& a) {
                             std::equal(outer_.begin(), outer_.end(), a.outerIndexPtr()) &&
                             std::equal(inner_.begin(), inner_.end(), a.innerIndexPtr());
   if (!same_pattern) analyze(a, std::vector<int>(group_), std::vector<int>(last_));
+  zero_values();
   const double* values = a.valuePtr();
-  // Left-looking: supernode s gathers its entries of a, then the updates of every earlier
-  // supernode d with rows in s's columns. Supernodes waiting to update s are linked from
-  // head[s] (next[] chains them); lpos[d] is where d's next rows to use start. The trailing
-  // supernodes only collect a's entries and the leading ones' updates here (kept for
-  // update_last).
+  for (std::size_t q = 0; q < entry_src_.size(); ++q) lx_[entry_dst_[q]] = values[entry_src_[q]];
+  return factorize_values();
+}
+
+bool SupernodalLdlt::factorize_values() {
+  // Left-looking: supernode s holds its entries of the matrix, then takes the updates of every
+  // earlier supernode d with rows in s's columns. Supernodes waiting to update s are linked
+  // from head[s] (next[] chains them); lpos[d] is where d's next rows to use start. The
+  // trailing supernodes only collect the leading ones' updates here (kept for update_last).
   std::fill(ws_.head.begin(), ws_.head.end(), -1);
   double* lx = lx_.data();
   for (int s = 0; s < nsuper_; ++s) {
-    const int nscol = super_[s + 1] - super_[s];
     const long psi = pi_[s];
     const int nsrow = static_cast<int>(pi_[s + 1] - psi);
     double* xs = lx + px_[s];
-    std::fill(xs, xs + static_cast<long>(nsrow) * nscol, 0.0);
-    for (long q = entry_start_[s]; q < entry_start_[s + 1]; ++q) lx[entry_dst_[q]] = values[entry_src_[q]];
     for (int i = 0; i < nsrow; ++i) ws_.local[ls_[psi + i]] = i;
     for (int d = ws_.head[s]; d >= 0;) {
       const int dnext = ws_.next[d];
@@ -221,7 +242,7 @@ bool SupernodalLdlt::factorize(const SparseMatrix& a) {
       d = dnext;
     }
     if (s >= first_trailing_) continue;
-    if (!factor_supernode(xs, nsrow, nscol, d_.data() + super_[s], ws_.w.data())) return false;
+    if (!factor_supernode(xs, nsrow, super_[s + 1] - super_[s], d_.data() + super_[s], ws_.w.data())) return false;
     link(s, ws_);
   }
   trailing_sums_.assign(lx + px_[first_trailing_], lx + lx_.size());
@@ -258,15 +279,10 @@ bool SupernodalLdlt::update_last(std::span<const Eigen::Triplet<double>> delta) 
   for (const auto& e : delta) {
     if (e.row() < e.col()) continue;
     if (e.row() >= n_ || e.col() < 0) throw std::invalid_argument("SupernodalLdlt::update_last: entry out of range");
-    const int pr = iperm_[e.row()], pc = iperm_[e.col()];
-    const int col = std::min(pr, pc), row = std::max(pr, pc);
-    if (col < first_column) return false;
-    const int k = super_of_col_[col];
-    const int* rows = ls_.data() + pi_[k];
-    const int nsrow = static_cast<int>(pi_[k + 1] - pi_[k]);
-    const int* found = std::find(rows, rows + nsrow, row);
-    if (found == rows + nsrow) return false;
-    additions.emplace_back(px_[k] + static_cast<long>(col - super_[k]) * nsrow + (found - rows), e.value());
+    if (std::min(iperm_[e.row()], iperm_[e.col()]) < first_column) return false;
+    const long position = find_position(e.row(), e.col());
+    if (position < 0) return false;
+    additions.emplace_back(position, e.value());
   }
   return factorize_trailing(additions);
 }

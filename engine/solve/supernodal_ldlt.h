@@ -13,11 +13,14 @@
 // dense block.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
 #include <span>
 #include <utility>
 #include <vector>
 
 namespace pfem {
+
+struct SupernodalStructure;
 
 class SupernodalLdlt {
  public:
@@ -27,11 +30,29 @@ class SupernodalLdlt {
   // compressed), on the graph of the groups of unknowns (group[k] of unknown k; empty: each
   // unknown alone), the groups holding an unknown of `last` ordered after all others.
   void analyze(const SparseMatrix& a, std::span<const int> group = {}, std::span<const int> last = {});
+  // The same from the couplings between groups (supernodal_symbolic.h), with no matrix: its
+  // entries are then added in place (zero_values, values() at block(), factorize_values).
+  void analyze(int n, std::span<const int> group, std::span<const std::array<int, 2>> couplings,
+               std::span<const int> last = {});
   // Numeric factorisation of a (compressed). A pattern other than the analysed one (the
   // structure's tangent leaves out exact zeros, so it can change within a step) is analysed
   // first, with the same groups and `last`. Returns false on a zero or non-finite pivot (the
   // factor is then unusable).
   bool factorize(const SparseMatrix& a);
+
+  // Where the entries between the unknowns of two groups go in values(): entry (row0 + i,
+  // col0 + j), with row0 and col0 the first unknowns of their groups and i, j counted among the
+  // group's unknowns in increasing order, lies at base + i row_step + j col_step, in the lower
+  // triangle of the permuted matrix whichever group comes first (add each pair of groups once;
+  // in a group's own block the entries above the diagonal land in ignored scratch).
+  struct Block {
+    long base;
+    long row_step, col_step;
+  };
+  Block block(int row0, int col0) const;  // throws std::logic_error if the groups do not couple
+  void zero_values();
+  double* values() { return lx_.data(); }
+  bool factorize_values();  // as factorize, from the values added in place
   // Factorises the last factorised matrix plus delta, whose entries (lower triangle, repeated
   // ones summed) all lie between unknowns named `last`: only the trailing supernodes are redone.
   // Returns false on a zero or non-finite pivot, or when an entry of delta has no place in the
@@ -50,6 +71,10 @@ class SupernodalLdlt {
   void apply_update(int d, int s, double* xs, Workspace& ws);
   // Links the factorised supernode s to the first supernode its off-diagonal rows update.
   void link(int s, Workspace& ws) const;
+  // Where entry (row, col) of the lower triangle lies in lx_, or -1 if nowhere.
+  long find_position(int row, int col) const;
+  // Member arrays from the symbolic structure; max_rows_, workspaces.
+  void take_structure(SupernodalStructure&& structure);
   // The trailing supernodes from their kept sums (a's entries and the leading supernodes'
   // updates) plus the (position, value) additions.
   bool factorize_trailing(std::span<const std::pair<long, double>> additions);
@@ -63,9 +88,8 @@ class SupernodalLdlt {
   std::vector<int> super_of_col_;   // the supernode of each column
   std::vector<long> pi_, px_;       // starts of each supernode's row indices (in ls_) and values (in lx_)
   std::vector<int> ls_;             // row indices of each supernode, its own columns first
-  std::vector<int> entry_src_;      // a's lower entries (indices into its values), grouped by supernode ...
+  std::vector<int> entry_src_;      // a's lower entries (indices into its values) ...
   std::vector<long> entry_dst_;     // ... and where each goes in lx_
-  std::vector<long> entry_start_;   // supernode s owns entries entry_start_[s] .. entry_start_[s+1]-1
   int max_rows_ = 0, max_cols_ = 0;
   std::vector<double> lx_;          // supernodal L (unit diagonal implied), column-major blocks
   std::vector<double> d_;           // the diagonal D

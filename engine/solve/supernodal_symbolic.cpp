@@ -4,6 +4,7 @@
 #include <camd.h>
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 
 namespace pfem {
@@ -26,26 +27,19 @@ struct Lists {
   const int* end(int k) const { return item.data() + start[k + 1]; }
 };
 
-// The symmetric graph of the groups from the lower triangle (both directions, no self loops,
-// each list sorted and without repeats).
-Lists group_graph(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& lower, const std::vector<int>& g, int ng) {
-  const int n = static_cast<int>(lower.cols());
-  const int* outer = lower.outerIndexPtr();
-  const int* inner = lower.innerIndexPtr();
+// The symmetric graph of the groups (both directions, no self loops, each list sorted and without
+// repeats) from coupled pairs of compact group numbers (-1: a group without unknowns, skipped).
+Lists group_graph(const std::vector<std::array<int, 2>>& pairs, int ng) {
   std::vector<int> start(ng + 1, 0);
-  for (int j = 0; j < n; ++j)
-    for (int p = outer[j]; p < outer[j + 1]; ++p)
-      if (inner[p] > j && g[inner[p]] != g[j]) ++start[g[inner[p]] + 1], ++start[g[j] + 1];
+  for (const auto& [a, b] : pairs)
+    if (a >= 0 && b >= 0 && a != b) ++start[a + 1], ++start[b + 1];
   for (int k = 0; k < ng; ++k) start[k + 1] += start[k];
   std::vector<int> item(start[ng]), slot(start.begin(), start.end() - 1);
-  for (int j = 0; j < n; ++j)
-    for (int p = outer[j]; p < outer[j + 1]; ++p) {
-      const int a = g[inner[p]], b = g[j];
-      if (inner[p] > j && a != b) item[slot[a]++] = b, item[slot[b]++] = a;
-    }
+  for (const auto& [a, b] : pairs)
+    if (a >= 0 && b >= 0 && a != b) item[slot[a]++] = b, item[slot[b]++] = a;
   Lists graph;
   graph.start.assign(ng + 1, 0);
-  graph.item.reserve(item.size() / 4);
+  graph.item.reserve(item.size() / 2);
   std::vector<int> mark(ng, -1);
   for (int k = 0; k < ng; ++k) {
     for (int p = start[k]; p < start[k + 1]; ++p)
@@ -81,31 +75,28 @@ struct Super {
 
 }  // namespace
 
-SupernodalStructure supernodal_symbolic(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& lower,
-                                        std::span<const int> group, std::span<const int> last) {
-  const int n = static_cast<int>(lower.cols());
-  if (lower.rows() != n || !lower.isCompressed())
-    throw std::invalid_argument("supernodal_symbolic needs a square, compressed matrix");
-  if (!group.empty() && static_cast<int>(group.size()) != n)
+SupernodalStructure supernodal_symbolic(int n, std::span<const int> group,
+                                        std::span<const std::array<int, 2>> couplings, std::span<const int> last) {
+  if (n < 0 || (!group.empty() && static_cast<int>(group.size()) != n))
     throw std::invalid_argument("supernodal_symbolic: one group per unknown");
 
   // Groups numbered 0 .. ng-1 in order of first appearance, and their unknowns.
-  std::vector<int> g(n);
-  int ng = 0;
-  if (group.empty()) {
-    for (int k = 0; k < n; ++k) g[k] = k;
-    ng = n;
-  } else {
-    const int max_id = n > 0 ? *std::max_element(group.begin(), group.end()) : -1;
-    if (n > 0 && *std::min_element(group.begin(), group.end()) < 0)
-      throw std::invalid_argument("supernodal_symbolic: a negative group");
-    std::vector<int> compact(max_id + 1, -1);
-    for (int k = 0; k < n; ++k) {
-      int& c = compact[group[k]];
-      if (c < 0) c = ng++;
-      g[k] = c;
-    }
+  const auto id_of = [&group](int k) { return group.empty() ? k : group[k]; };
+  int max_id = n - 1;
+  for (int k = 0; k < n; ++k) {
+    if (id_of(k) < 0) throw std::invalid_argument("supernodal_symbolic: a negative group");
+    max_id = std::max(max_id, id_of(k));
   }
+  std::vector<int> compact(max_id + 1, -1), g(n);
+  int ng = 0;
+  for (int k = 0; k < n; ++k) {
+    int& c = compact[id_of(k)];
+    if (c < 0) c = ng++;
+    g[k] = c;
+  }
+  std::vector<std::array<int, 2>> pairs(couplings.size());
+  const auto compact_of = [&](int id) { return id >= 0 && id <= max_id ? compact[id] : -1; };
+  for (std::size_t q = 0; q < couplings.size(); ++q) pairs[q] = {compact_of(couplings[q][0]), compact_of(couplings[q][1])};
   Lists members;
   members.start.assign(ng + 1, 0);
   for (int k = 0; k < n; ++k) ++members.start[g[k] + 1];
@@ -123,7 +114,7 @@ SupernodalStructure supernodal_symbolic(const Eigen::SparseMatrix<double, Eigen:
   const bool constrained = std::find(trailing.begin(), trailing.end(), 1) != trailing.end();
 
   // Fill-reducing order of the groups.
-  const Lists graph = group_graph(lower, g, ng);
+  const Lists graph = group_graph(pairs, ng);
   std::vector<int> order(ng);
   if (ng > 0) {
     const int status = constrained ? camd_order(ng, graph.start.data(), graph.item.data(), order.data(), nullptr,

@@ -5,7 +5,7 @@
 // eliminating them together loses nothing, and the graph is about ten times smaller. AMD orders
 // the groups (CAMD when some must come last), the elimination tree is postordered, fundamental
 // supernodes are relaxed as CHOLMOD relaxes them, and the result is expanded to the unknowns.
-#include <Eigen/SparseCore>
+#include <array>
 #include <span>
 #include <vector>
 
@@ -20,12 +20,13 @@ struct SupernodalStructure {
   int first_trailing = 0;       // the first supernode holding an unknown of `last` (count if none)
 };
 
-// lower: the lower triangle (compressed, column-major) of a symmetric matrix. group[k] >= 0
-// names the group of unknown k (empty: each unknown its own group); the unknowns of a group are
-// given consecutive columns and treated as coupled to each other. The groups holding an unknown
-// of `last` are ordered after all others. Throws std::invalid_argument on bad groups or
-// unknowns, std::runtime_error if AMD or CAMD fails.
-SupernodalStructure supernodal_symbolic(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& lower,
-                                        std::span<const int> group, std::span<const int> last);
+// n unknowns in groups: group[k] >= 0 names the group of unknown k (any numbering; empty: each
+// unknown its own group, named by its index); the unknowns of a group are given consecutive
+// columns, in increasing order, and treated as coupled to each other. couplings: pairs of
+// group names that couple (either order; repeats, self pairs and names without unknowns are
+// ignored). The groups holding an unknown of `last` are ordered after all others. Throws
+// std::invalid_argument on bad groups or unknowns, std::runtime_error if AMD or CAMD fails.
+SupernodalStructure supernodal_symbolic(int n, std::span<const int> group,
+                                        std::span<const std::array<int, 2>> couplings, std::span<const int> last);
 
 }  // namespace pfem

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <memory>
 #include <random>
@@ -172,6 +173,38 @@ TEST(SupernodalLdlt, AnalysisOnTheNodesSolvesAsOnTheUnknowns) {
   by_node.solve(x);
   EXPECT_LT(relative_difference(x, factorised(SymmetricBackend::kCholmodLdlt, a)->solve(b)), 1e-12);
   EXPECT_LT(relative_residual(a, x, b), 1e-13);
+}
+
+// The engine's way: the analysis from the couplings of the grid's nodes (no matrix), the
+// entries added in place at block() positions, the factorisation from those values.
+TEST(SupernodalLdlt, DirectAssemblyAtBlockPositionsSolvesAsTheMatrix) {
+  const int nx = 24, ny = 20;
+  const SparseMatrix a = quasi_definite(nx, ny, 17);
+  const int n = static_cast<int>(a.rows());
+  const std::vector<int> group = node_groups(nx * ny);
+  std::vector<std::array<int, 2>> couplings;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int node = j * nx + i;
+      if (i + 1 < nx) couplings.push_back({group[3 * node], group[3 * (node + 1)]});
+      if (j + 1 < ny) couplings.push_back({group[3 * node], group[3 * (node + nx)]});
+      if (i + 1 < nx && j + 1 < ny) couplings.push_back({group[3 * (node + nx + 1)], group[3 * node]});
+    }
+  SupernodalLdlt direct;
+  direct.analyze(n, group, couplings);
+  direct.zero_values();
+  for (int col = 0; col < n; ++col)
+    for (SparseMatrix::InnerIterator it(a, col); it; ++it) {
+      const int row = static_cast<int>(it.row());
+      const SupernodalLdlt::Block b = direct.block(row - row % 3, col - col % 3);
+      direct.values()[b.base + (row % 3) * b.row_step + (col % 3) * b.col_step] += it.value();
+    }
+  ASSERT_TRUE(direct.factorize_values());
+  const Eigen::MatrixXd b = random_rhs(n, 1, 18);
+  Eigen::MatrixXd x = b;
+  direct.solve(x);
+  EXPECT_LT(relative_difference(x, factorised(SymmetricBackend::kCholmodLdlt, a)->solve(b)), 1e-12);
+  EXPECT_THROW(direct.block(3 * (nx * ny - 1), 0), std::logic_error);  // opposite corners never couple
 }
 
 // The velocity unknowns of the grid's middle column of nodes (a beam through the water).
