@@ -30,8 +30,12 @@ std::uint64_t triangle_key(const std::array<std::int32_t, 3>& t) {
   return n[0] | (n[1] << 21) | (n[2] << 42);
 }
 
-// Whether segments pq and ab cross or touch (each straddles the other's line).
+// Whether segments pq and ab cross or touch (their boxes overlap and each straddles the other's
+// line; the box test also keeps collinear segments apart on their common line from counting).
 bool segments_cross(double px, double py, double qx, double qy, double ax, double ay, double bx, double by) {
+  if (std::max(px, qx) < std::min(ax, bx) || std::max(ax, bx) < std::min(px, qx) || std::max(py, qy) < std::min(ay, by) ||
+      std::max(ay, by) < std::min(py, qy))
+    return false;
   const auto orient = [](double ux, double uy, double vx, double vy, double wx, double wy) {
     return (vx - ux) * (wy - uy) - (vy - uy) * (wx - ux);
   };
