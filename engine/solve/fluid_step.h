@@ -130,7 +130,8 @@ class UnifiedStep {
   // Those entries in the lower triangle, at the current trial state.
   std::vector<Eigen::Triplet<double>> structure_tangent_lower(const StepSettings& s) const;
   // The condensed factorisation with the structure's part at the current iterate (the fluid's
-  // part stays that of the last factorisation); false when it cannot be updated so.
+  // part stays that of the last factorisation), unless that part barely changed; false when it
+  // cannot be updated so.
   bool update_structure_tangent(const StepSettings& s);
   // Every element's geometry and residual at the current iterate (in parallel).
   void element_terms(const mesh::FluidMesh& mesh, const StepSettings& s);
@@ -221,6 +222,7 @@ class UnifiedStep {
   std::vector<std::array<SupernodalLdlt::Block, 6>> element_blocks_;  // per triangle and corner pair
   std::vector<long> pressure_diagonal_;  // per pressure unknown: its diagonal in the factor
   std::vector<Eigen::Triplet<double>> factor_structure_;  // the structure's entries last factorised
+  std::vector<Eigen::Triplet<double>> structure_in_factor_;  // ... and those the factor holds now
   // DDM: bubble sensitivities (2 x P) at t_n per element and of the last step by triangle; the
   // solved sensitivities of the unknowns (one column per parameter).
   using BubbleSensitivity = Eigen::Matrix<double, 2, Eigen::Dynamic>;
