@@ -27,7 +27,7 @@
 // serves all iterations unless convergence stalls, and the residual is driven to a tight
 // relative tolerance because the DDM is exact only at the converged state. The structure's
 // unknowns are eliminated last, so that its tangent (which jumps as fibers yield or unload) is
-// refreshed at every iterate by refactorising only the trailing dense block.
+// refreshed at every iterate where it changed by refactorising only the trailing dense block.
 #include <array>
 #include <atomic>
 #include <cstdint>

@@ -186,8 +186,8 @@ SupernodalStructure supernodal_symbolic(int n, std::span<const int> group,
     std::sort(column.item.begin() + column.start[m], column.item.end());
   }
 
-  // Unknowns per label, fundamental supernodes (a chain of only children with nested columns),
-  // then relaxed (a supernode merges into the next when that holds its parent).
+  // Unknowns per label, then the fundamental supernodes: chains of only children whose columns
+  // nest (kept on one side of the trailing boundary).
   std::vector<long> width(ng + 1, 0);  // unknowns before each label
   for (int m = 0; m < ng; ++m) width[m + 1] = width[m] + members.size(gorder[m]);
   const auto below = [&](int m) {  // unknowns in the rows below group column m
@@ -195,40 +195,38 @@ SupernodalStructure supernodal_symbolic(int n, std::span<const int> group,
     for (const int* r = column.begin(m); r != column.end(m); ++r) rows += width[*r + 1] - width[*r];
     return rows;
   };
-  std::vector<Super> supers;
+  std::vector<Super> fundamental;
   for (int m = 0; m < ng; ++m) {
+    const long columns = width[m + 1] - width[m];
     const bool continues = m > 0 && tree[m - 1] == m && children.size(m) == 1 &&
                            column.size(m - 1) == column.size(m) + 1 && trailing[gorder[m - 1]] == trailing[gorder[m]];
     if (continues) {
-      supers.back().last = m + 1;
-      supers.back().columns += width[m + 1] - width[m];
-      supers.back().rows = supers.back().columns + below(m);
-      continue;
+      Super& f = fundamental.back();
+      f.last = m + 1;
+      f.columns += columns;
+      f.rows = f.columns + below(m);
+    } else {
+      fundamental.push_back({m, m + 1, columns, columns + below(m), 0.0});
     }
-    const long columns = width[m + 1] - width[m];
-    Super f{m, m + 1, columns, columns + below(m), 0.0};
+  }
+  // Relaxed: a supernode merges into the next one when that holds its parent and the merge adds
+  // few explicit zeros.
+  std::vector<Super> supers;
+  for (const Super& f : fundamental) {
     if (!supers.empty()) {
       Super& c = supers.back();
       const int up = tree[c.last - 1];
-      // f may still grow into a fundamental chain: merge decisions are taken on the final f, so
-      // look ahead to where f's chain ends.
-      int end = m + 1;
-      while (end < ng && tree[end - 1] == end && children.size(end) == 1 && column.size(end - 1) == column.size(end) + 1 &&
-             trailing[gorder[end - 1]] == trailing[gorder[end]])
-        ++end;
-      if (up >= m && up < end && trailing[gorder[c.last - 1]] == trailing[gorder[m]]) {
-        const long fc = width[end] - width[m], fr = fc + below(end - 1);
-        const long columns_merged = c.columns + fc, rows_merged = c.columns + fr;
-        const double entries = trapezoid(columns_merged, rows_merged);
-        const double zeros = entries - (trapezoid(c.columns, c.rows) - c.zeros) - trapezoid(fc, fr);
+      if (up >= f.first && up < f.last && trailing[gorder[c.last - 1]] == trailing[gorder[f.first]]) {
+        const long columns = c.columns + f.columns, rows = c.columns + f.rows;
+        const double entries = trapezoid(columns, rows);
+        const double zeros = entries - (trapezoid(c.columns, c.rows) - c.zeros) - (trapezoid(f.columns, f.rows) - f.zeros);
         const double fraction = zeros / entries;
-        if (columns_merged <= kRelaxColumns[0] || (columns_merged <= kRelaxColumns[1] && fraction < kRelaxZeros[0]) ||
-            (columns_merged <= kRelaxColumns[2] && fraction < kRelaxZeros[1]) || fraction < kRelaxZeros[2]) {
-          c.last = end;
-          c.columns = columns_merged;
-          c.rows = rows_merged;
+        if (columns <= kRelaxColumns[0] || (columns <= kRelaxColumns[1] && fraction < kRelaxZeros[0]) ||
+            (columns <= kRelaxColumns[2] && fraction < kRelaxZeros[1]) || fraction < kRelaxZeros[2]) {
+          c.last = f.last;
+          c.columns = columns;
+          c.rows = rows;
           c.zeros = zeros;
-          m = end - 1;
           continue;
         }
       }
