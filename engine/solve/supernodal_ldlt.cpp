@@ -170,7 +170,8 @@ SupernodalLdlt::Block SupernodalLdlt::block(int row0, int col0) const {
 
 void SupernodalLdlt::zero_values() { std::fill(lx_.begin(), lx_.end(), 0.0); }
 
-void SupernodalLdlt::apply_update(int d, int s, double* xs, Workspace& ws) {
+void SupernodalLdlt::apply_update(int d, int s, double* xs) {
+  Workspace& ws = ws_;
   const int k2 = super_[s + 1], nsrow = static_cast<int>(pi_[s + 1] - pi_[s]);
   const long pdi = pi_[d], pdend = pi_[d + 1];
   const int ndrow = static_cast<int>(pdend - pdi), ndcol = super_[d + 1] - super_[d];
@@ -203,7 +204,8 @@ void SupernodalLdlt::apply_update(int d, int s, double* xs, Workspace& ws) {
   }
 }
 
-void SupernodalLdlt::link(int s, Workspace& ws) const {
+void SupernodalLdlt::link(int s) {
+  Workspace& ws = ws_;
   const int nscol = super_[s + 1] - super_[s];
   if (pi_[s + 1] - pi_[s] == nscol) return;
   ws.lpos[s] = nscol;
@@ -230,46 +232,35 @@ bool SupernodalLdlt::factorize_values() {
   // from head[s] (next[] chains them); lpos[d] is where d's next rows to use start. The
   // trailing supernodes only collect the leading ones' updates here (kept for update_last).
   std::fill(ws_.head.begin(), ws_.head.end(), -1);
-  double* lx = lx_.data();
-  for (int s = 0; s < nsuper_; ++s) {
-    const long psi = pi_[s];
-    const int nsrow = static_cast<int>(pi_[s + 1] - psi);
-    double* xs = lx + px_[s];
-    for (int i = 0; i < nsrow; ++i) ws_.local[ls_[psi + i]] = i;
-    for (int d = ws_.head[s]; d >= 0;) {
-      const int dnext = ws_.next[d];
-      apply_update(d, s, xs, ws_);
-      d = dnext;
-    }
-    if (s >= first_trailing_) continue;
-    if (!factor_supernode(xs, nsrow, super_[s + 1] - super_[s], d_.data() + super_[s], ws_.w.data())) return false;
-    link(s, ws_);
-  }
-  trailing_sums_.assign(lx + px_[first_trailing_], lx + lx_.size());
+  if (!eliminate(0, first_trailing_, true)) return false;
+  eliminate(first_trailing_, nsuper_, false);
+  trailing_sums_.assign(lx_.begin() + px_[first_trailing_], lx_.end());
   return factorize_trailing({});
 }
 
-bool SupernodalLdlt::factorize_trailing(std::span<const std::pair<long, double>> additions) {
-  if (first_trailing_ == nsuper_) return true;
-  double* lx = lx_.data();
-  std::copy(trailing_sums_.begin(), trailing_sums_.end(), lx + px_[first_trailing_]);
-  for (const auto& [position, value] : additions) lx[position] += value;
-  std::fill(ws_.head.begin() + first_trailing_, ws_.head.end(), -1);
-  for (int s = first_trailing_; s < nsuper_; ++s) {
-    const int nscol = super_[s + 1] - super_[s];
+bool SupernodalLdlt::eliminate(int first, int last, bool factor) {
+  for (int s = first; s < last; ++s) {
     const long psi = pi_[s];
     const int nsrow = static_cast<int>(pi_[s + 1] - psi);
-    double* xs = lx + px_[s];
+    double* xs = lx_.data() + px_[s];
     for (int i = 0; i < nsrow; ++i) ws_.local[ls_[psi + i]] = i;
     for (int d = ws_.head[s]; d >= 0;) {
       const int dnext = ws_.next[d];
-      apply_update(d, s, xs, ws_);
+      apply_update(d, s, xs);
       d = dnext;
     }
-    if (!factor_supernode(xs, nsrow, nscol, d_.data() + super_[s], ws_.w.data())) return false;
-    link(s, ws_);
+    if (!factor) continue;
+    if (!factor_supernode(xs, nsrow, super_[s + 1] - super_[s], d_.data() + super_[s], ws_.w.data())) return false;
+    link(s);
   }
   return true;
+}
+
+bool SupernodalLdlt::factorize_trailing(std::span<const std::pair<long, double>> additions) {
+  std::copy(trailing_sums_.begin(), trailing_sums_.end(), lx_.begin() + px_[first_trailing_]);
+  for (const auto& [position, value] : additions) lx_[position] += value;
+  std::fill(ws_.head.begin() + first_trailing_, ws_.head.end(), -1);
+  return eliminate(first_trailing_, nsuper_, true);
 }
 
 bool SupernodalLdlt::update_last(std::span<const Eigen::Triplet<double>> delta) {

@@ -66,11 +66,14 @@ class SupernodalLdlt {
     std::vector<int> local, relative, head, next, lpos;
     std::vector<double> update, w;
   };
-  // Subtracts from supernode s (values xs; ws.local maps its rows to positions) the update of
-  // the factorised supernode d from d's rows at ws.lpos[d] on, then links d to its next target.
-  void apply_update(int d, int s, double* xs, Workspace& ws);
+  // Subtracts from supernode s (values xs; ws_.local maps its rows to positions) the update of
+  // the factorised supernode d from d's rows at ws_.lpos[d] on, then links d to its next target.
+  void apply_update(int d, int s, double* xs);
   // Links the factorised supernode s to the first supernode its off-diagonal rows update.
-  void link(int s, Workspace& ws) const;
+  void link(int s);
+  // Supernodes first .. last-1 in turn take the updates linked to them and, if `factor`, are
+  // factorised and linked on. False on a zero or non-finite pivot.
+  bool eliminate(int first, int last, bool factor);
   // Where entry (row, col) of the lower triangle lies in lx_, or -1 if nowhere.
   long find_position(int row, int col) const;
   // Member arrays from the symbolic structure; max_rows_, workspaces.
