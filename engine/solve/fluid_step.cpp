@@ -346,6 +346,7 @@ bool UnifiedStep::update_structure_tangent(const StepSettings& s) {
   int first = std::numeric_limits<int>::max(), last = -1;
   for (const int d : s_dof_)
     if (d >= 0) first = std::min(first, d), last = std::max(last, d);
+  if (last < 0) return true;  // every structure dof supported
   const int m = last - first + 1;
   Eigen::MatrixXd change = Eigen::MatrixXd::Zero(m, m);
   for (const auto& e : current) change(e.row() - first, e.col() - first) += e.value();
