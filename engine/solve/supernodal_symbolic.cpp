@@ -50,23 +50,23 @@ Lists group_graph(const std::vector<std::array<int, 2>>& pairs, int ng) {
   return graph;
 }
 
-// Children of each node of a forest (ascending), from the parents (-1 at a root).
-Lists children_of(const std::vector<int>& parent) {
-  const int n = static_cast<int>(parent.size());
-  Lists children;
-  children.start.assign(n + 1, 0);
-  for (int k = 0; k < n; ++k)
-    if (parent[k] >= 0) ++children.start[parent[k] + 1];
-  for (int k = 0; k < n; ++k) children.start[k + 1] += children.start[k];
-  children.item.resize(children.start[n]);
-  std::vector<int> slot(children.start.begin(), children.start.end() - 1);
-  for (int k = 0; k < n; ++k)
-    if (parent[k] >= 0) children.item[slot[parent[k]]++] = k;
-  return children;
+// The items 0 .. key.size()-1 listed by their key (ascending within each list; key -1: in no
+// list): the children of each node of a forest from the parents, the unknowns of each group.
+Lists lists_by_key(const std::vector<int>& key, int num_keys) {
+  Lists lists;
+  lists.start.assign(num_keys + 1, 0);
+  for (const int k : key)
+    if (k >= 0) ++lists.start[k + 1];
+  for (int k = 0; k < num_keys; ++k) lists.start[k + 1] += lists.start[k];
+  lists.item.resize(lists.start[num_keys]);
+  std::vector<int> slot(lists.start.begin(), lists.start.end() - 1);
+  for (int i = 0; i < static_cast<int>(key.size()); ++i)
+    if (key[i] >= 0) lists.item[slot[key[i]]++] = i;
+  return lists;
 }
 
 // A supernode while relaxing: groups first .. last-1, unknown columns and rows (its own
-// columns included), explicit zeros, and the group whose factor column gives its rows below.
+// columns included), explicit zeros.
 struct Super {
   int first, last;
   long columns, rows;
@@ -97,15 +97,7 @@ SupernodalStructure supernodal_symbolic(int n, std::span<const int> group,
   std::vector<std::array<int, 2>> pairs(couplings.size());
   const auto compact_of = [&](int id) { return id >= 0 && id <= max_id ? compact[id] : -1; };
   for (std::size_t q = 0; q < couplings.size(); ++q) pairs[q] = {compact_of(couplings[q][0]), compact_of(couplings[q][1])};
-  Lists members;
-  members.start.assign(ng + 1, 0);
-  for (int k = 0; k < n; ++k) ++members.start[g[k] + 1];
-  for (int k = 0; k < ng; ++k) members.start[k + 1] += members.start[k];
-  members.item.resize(n);
-  {
-    std::vector<int> slot(members.start.begin(), members.start.end() - 1);
-    for (int k = 0; k < n; ++k) members.item[slot[g[k]]++] = k;
-  }
+  const Lists members = lists_by_key(g, ng);
   std::vector<int> trailing(ng, 0);
   for (const int k : last) {
     if (k < 0 || k >= n) throw std::invalid_argument("supernodal_symbolic: a last unknown out of range");
@@ -146,7 +138,7 @@ SupernodalStructure supernodal_symbolic(int n, std::span<const int> group,
     std::vector<int> forest(parent);
     for (int k = 0; k < ng; ++k)
       if (trailing[order[k]] || (forest[k] >= 0 && trailing[order[forest[k]]])) forest[k] = -1;
-    const Lists children = children_of(forest);
+    const Lists children = lists_by_key(forest, ng);
     std::vector<int> next_child(children.start.begin(), children.start.end() - 1), stack;
     for (int root = 0; root < ng; ++root) {
       if (forest[root] >= 0 || trailing[order[root]]) continue;
@@ -171,7 +163,7 @@ SupernodalStructure supernodal_symbolic(int n, std::span<const int> group,
 
   // Rows of each group's factor column (labels below the diagonal): its own later neighbours
   // and its children's rows.
-  const Lists children = children_of(tree);
+  const Lists children = lists_by_key(tree, ng);
   Lists column;
   column.start.assign(ng + 1, 0);
   std::vector<int> mark(ng, -1);
