@@ -1,8 +1,9 @@
 #pragma once
-// The sparse factorisations behind one small interface, so backends can be measured side by
-// side (toolchain.md): CHOLMOD or Eigen's SimplicialLDLT for the SPD condensed response matrix,
-// UMFPACK for the non-symmetric sensitivity matrix. Symbolic analysis once per step
-// (connectivity is fixed within a step), numeric factorisation when the values change.
+// SuiteSparse's factorisations behind one small interface: CHOLMOD for the SPD matrix of the
+// paper's global-bubble formulation (and as the reference in tests), UMFPACK for the
+// non-symmetric sensitivity matrix. (The default formulation's quasi-definite matrix has its own
+// supernodal LDL^T, supernodal_ldlt.h.) Symbolic analysis once per step (connectivity is fixed
+// within a step), numeric factorisation when the values change.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
@@ -13,10 +14,9 @@ namespace pfem {
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 // kCholmodLlt: supernodal Cholesky, positive definite matrices only.
-// kCholmodLdlt, kEigenLdlt: simplicial LDL^T without pivoting, which also factorises the
-// symmetric quasi-definite [A B; B^T -C] systems (A, C positive definite) of the fluid.
-// kSupernodalLdlt: the same LDL^T with dense supernodal blocks (supernodal_ldlt.h).
-enum class SymmetricBackend { kCholmodLlt, kCholmodLdlt, kEigenLdlt, kSupernodalLdlt };
+// kCholmodLdlt: simplicial LDL^T without pivoting, which also factorises the symmetric
+// quasi-definite [A B; B^T -C] systems (A, C positive definite) of the fluid.
+enum class SymmetricBackend { kCholmodLlt, kCholmodLdlt };
 
 // Factorises symmetric matrices (the lower triangle is read).
 class SymmetricSolver {
