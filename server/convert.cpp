@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <set>
+#include <sstream>
 
 namespace pfem::server {
 
@@ -52,6 +53,10 @@ pfem::v1::Summary to_proto(const RunSummary& s) {
   out.set_factorize_seconds(s.factorize_seconds);
   out.set_solve_seconds(s.solve_seconds);
   out.set_newton_iterations(s.newton_iterations);
+  out.set_factorizations(s.factorizations);
+  out.set_substeps(s.substeps);
+  out.set_removed_particles(s.removed_particles);
+  out.set_inserted_particles(s.inserted_particles);
   out.set_particles(s.particles);
   out.set_max_elements(s.max_elements);
   out.set_fluid_area_initial(s.fluid_area_initial);
@@ -83,6 +88,10 @@ RunSummary from_proto(const pfem::v1::Summary& s) {
   out.factorize_seconds = s.factorize_seconds();
   out.solve_seconds = s.solve_seconds();
   out.newton_iterations = s.newton_iterations();
+  out.factorizations = s.factorizations();
+  out.substeps = s.substeps();
+  out.removed_particles = s.removed_particles();
+  out.inserted_particles = s.inserted_particles();
   out.particles = s.particles();
   out.max_elements = s.max_elements();
   out.fluid_area_initial = s.fluid_area_initial();
@@ -193,6 +202,16 @@ std::vector<FieldError> validate_run_options(const pfem::v1::Model& model,
   positive(options.has_t_end(), options.t_end(), "t_end");
   positive(options.has_dt(), options.dt(), "dt");
   positive(options.has_fdm_eps(), options.fdm_eps(), "fdm_eps");
+  if (options.has_t_end() || options.has_dt()) {  // the run's step against the run's end
+    const double t_end = options.has_t_end() ? options.t_end() : model.analysis().t_end();
+    const double dt = options.has_dt() ? options.dt() : model.analysis().dt();
+    if (std::isfinite(t_end) && t_end > 0.0 && std::isfinite(dt) && dt > t_end) {
+      std::ostringstream message;
+      if (options.has_dt()) message << "must not exceed t_end (" << t_end << ")";
+      else message << "must not be less than dt (" << dt << ")";
+      errors.push_back({path(options.has_dt() ? "dt" : "t_end"), message.str()});
+    }
+  }
   for (int i = 0; i < options.params_size(); ++i) {
     bool found = false;
     for (const auto& p : model.parameters()) found |= p.name() == options.params(i);

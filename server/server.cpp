@@ -37,7 +37,11 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
     credentials = grpc::SslServerCredentials(ssl);
   }
 
-  store_ = std::make_unique<Store>(options_.data_dir);
+  try {
+    store_ = std::make_unique<Store>(options_.data_dir);
+  } catch (const StoreError& e) {
+    throw std::runtime_error(std::string("--data-dir: ") + e.what());
+  }
   JobManagerOptions job_options;
   job_options.workers = options_.workers > 0
                             ? options_.workers
@@ -50,6 +54,9 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
+  // gRPC sets SO_REUSEPORT by default: a second server on a port in use would start and share
+  // the calls with the first.
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.AddListeningPort(options_.listen, credentials, &port_);
   builder.RegisterService(service_.get());
   const int max_bytes = options_.limits.max_message_mb * 1024 * 1024;
@@ -63,6 +70,7 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
     throw std::runtime_error("--listen: cannot listen on " + options_.listen);
   }
   server_->GetHealthCheckService()->SetServingStatus(true);
+  server_->GetHealthCheckService()->SetServingStatus(pfem::v1::GradientService::service_full_name(), true);
 }
 
 Server::~Server() { shutdown(); }
@@ -83,7 +91,7 @@ void Server::shutdown() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   // Stop accepting: health NOT_SERVING, new calls UNAVAILABLE, queued jobs stay queued.
-  server_->GetHealthCheckService()->SetServingStatus(false);
+  server_->GetHealthCheckService()->SetServingStatus(false);  // every service
   service_->begin_drain();
   jobs_->begin_drain();
   // Let the calls in progress and the running jobs finish within the grace period.

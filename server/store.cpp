@@ -1,5 +1,10 @@
 #include "server/store.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
 #include <cstring>
 
@@ -83,6 +88,15 @@ Store::Store(const std::filesystem::path& data_dir) {
   std::error_code ec;
   std::filesystem::create_directories(data_dir, ec);
   if (ec) throw StoreError("cannot create " + data_dir.string() + ": " + ec.message());
+  const auto lock_file = (data_dir / "lock").string();
+  lock_fd_ = ::open(lock_file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0) throw StoreError("cannot open " + lock_file + ": " + std::strerror(errno));
+  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    ::close(lock_fd_);
+    throw StoreError(data_dir.string() + " is in use by another server (" + lock_file + " is locked)" +
+                     (error == EWOULDBLOCK ? "" : std::string(": ") + std::strerror(error)));
+  }
   const auto file = (data_dir / "pfem.sqlite3").string();
   const int rc = sqlite3_open_v2(file.c_str(), &db_,
                                  SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE |
@@ -92,6 +106,7 @@ Store::Store(const std::filesystem::path& data_dir) {
     const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
+    ::close(lock_fd_);
     throw StoreError("cannot open " + file + ": " + message);
   }
   sqlite3_busy_timeout(db_, 5000);
@@ -126,6 +141,7 @@ Store::Store(const std::filesystem::path& data_dir) {
 Store::~Store() {
   statements_.clear();
   sqlite3_close(db_);
+  ::close(lock_fd_);  // releases the lock
 }
 
 void Store::exec(const char* sql) {

@@ -30,7 +30,9 @@ class StoreError : public std::runtime_error {
 
 class Store {
  public:
-  // Opens (creating when needed) data_dir/pfem.sqlite3, WAL mode, busy timeout 5 s.
+  // Opens (creating when needed) data_dir/pfem.sqlite3, WAL mode, busy timeout 5 s. One Store
+  // at a time owns a data dir (a lock on data_dir/lock): a second server would re-queue and
+  // run the first one's jobs again.
   explicit Store(const std::filesystem::path& data_dir);
   ~Store();
   Store(const Store&) = delete;
@@ -67,6 +69,7 @@ class Store {
   void exec(const char* sql);           // call with mutex_ held
   void write_job_row(const pfem::v1::Job& job, const std::string& note);
 
+  int lock_fd_ = -1;
   std::mutex mutex_;
   sqlite3* db_ = nullptr;
   std::vector<std::unique_ptr<Statement>> statements_;

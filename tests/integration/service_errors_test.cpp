@@ -108,6 +108,17 @@ TEST_F(ServiceErrors, AllErrorsOfARequestComeTogether) {
   EXPECT_TRUE(mentions(status, "options.t_end: must be > 0 and finite"));
   EXPECT_TRUE(mentions(status, "options.params[0]: no parameter 'nu' in the model"));
 
+  // A run's step longer than the run, through the options or against the model's analysis.
+  request = {};
+  *request.mutable_model() = tiny_model();  // dt 0.002, t_end 0.01
+  request.mutable_options()->set_dt(0.1);
+  EXPECT_TRUE(mentions(submit(request), "options.dt: must not exceed t_end (0.01)"));
+  request.mutable_options()->clear_dt();
+  request.mutable_options()->set_t_end(0.001);
+  EXPECT_TRUE(mentions(submit(request), "options.t_end: must not be less than dt (0.002)"));
+  request.mutable_options()->set_dt(0.0005);
+  EXPECT_TRUE(submit(request).ok());
+
   // A parameter value that breaks the model's rules, and an infinite one.
   request = {};
   *request.mutable_model() = tiny_model();
@@ -178,14 +189,17 @@ TEST_F(ServiceErrors, LimitsAreResourceExhaustedNamingTheLimit) {
   EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
 }
 
-grpc::Status health_check(const std::string& address, int* serving_status) {
+// Health of one service ("" = the server).
+grpc::Status health_check(const std::string& address, const std::string& service, int* serving_status) {
   auto channel = grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
   grpc::GenericStub stub(channel);
   grpc::CompletionQueue cq;
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
-  grpc::Slice empty_slice("");
-  grpc::ByteBuffer request(&empty_slice, 1);  // HealthCheckRequest{service: ""}
+  std::string encoded;  // HealthCheckRequest{service}: field 1, length-delimited
+  if (!service.empty()) encoded = std::string{0x0a, static_cast<char>(service.size())} + service;
+  grpc::Slice slice(encoded);
+  grpc::ByteBuffer request(&slice, 1);
   grpc::ByteBuffer response;
   auto call = stub.PrepareUnaryCall(&context, "/grpc.health.v1.Health/Check", request, &cq);
   call->StartCall();
@@ -312,9 +326,46 @@ TEST(ServiceAuth, MissingOrWrongTokensAreUnauthenticatedAndHealthStaysOpen) {
                 good ? grpc::StatusCode::NOT_FOUND : grpc::StatusCode::UNAUTHENTICATED);
     }
   }
+  for (const std::string service : {"", "pfem.v1.GradientService"}) {
+    int serving = -1;
+    ASSERT_TRUE(health_check(server.address(), service, &serving).ok()) << service;
+    EXPECT_EQ(serving, 1) << service;
+  }
   int serving = -1;
-  ASSERT_TRUE(health_check(server.address(), &serving).ok());
-  EXPECT_EQ(serving, 1);
+  EXPECT_EQ(health_check(server.address(), "pfem.v1.NoSuchService", &serving).error_code(),
+            grpc::StatusCode::NOT_FOUND);
+}
+
+// A second server may neither share the first one's port (gRPC would let both listen and
+// split the calls) nor its data dir (it would run the first one's jobs again).
+TEST(ServiceStart, ASecondServerOnTheSamePortOrDataDirDoesNotStart) {
+  TempDir dir("second");
+  auto first = std::make_unique<pfem::server::Server>(local_options(dir.path / "one"),
+                                                      FakeEngine{}.function());
+  const std::string address = first->address();
+  auto same_port = local_options(dir.path / "two");
+  same_port.listen = address;
+  try {
+    pfem::server::Server second(same_port, FakeEngine{}.function());
+    ADD_FAILURE() << "a second server started on " << address;
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("--listen: cannot listen on " + address), std::string::npos)
+        << e.what();
+  }
+  try {
+    pfem::server::Server second(local_options(dir.path / "one"), FakeEngine{}.function());
+    ADD_FAILURE() << "a second server started on the same data dir";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("is in use by another server"), std::string::npos) << e.what();
+  }
+  // The first still answers; its data dir is free once it is gone.
+  auto stub = make_stub(address);
+  pfem::v1::ListJobsRequest list;
+  pfem::v1::ListJobsResponse jobs;
+  grpc::ClientContext c;
+  EXPECT_TRUE(stub->ListJobs(&c, list, &jobs).ok());
+  first.reset();
+  EXPECT_NO_THROW(pfem::server::Server(local_options(dir.path / "one"), FakeEngine{}.function()));
 }
 
 }  // namespace
