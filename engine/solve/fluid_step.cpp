@@ -425,12 +425,18 @@ void UnifiedStep::structure_residual(const StepSettings& s) {
   for (std::size_t j = 0; j < s_dof_.size(); ++j)
     if (s_dof_[j] >= 0) v[j] = v_[s_dof_[j]];
   model->set_trial_displacement(s_un_ + s.dt * v);
-  const Eigen::VectorXd load = model->external_load(), inertia = model->mass_times((v - s_vn_) / s.dt);
+  const Eigen::VectorXd load = model->external_load(), inertia = model->mass_times(structure_acceleration(s, v));
   const Eigen::VectorXd fs = model->resisting_force();
   const Eigen::VectorXd r = load - inertia - model->damping_times(v) - fs;
   s_force_scale_ = std::sqrt(load.squaredNorm() + inertia.squaredNorm() + fs.squaredNorm());
   for (std::size_t j = 0; j < s_dof_.size(); ++j)
     if (s_dof_[j] >= 0) rv_[s_dof_[j]] += r[j];
+}
+
+Eigen::VectorXd UnifiedStep::structure_acceleration(const StepSettings& s, const Eigen::VectorXd& v) const {
+  Eigen::VectorXd a = (v - s_vn_) / s.dt;
+  for (long j = 0; j < a.size(); j += 3) a[j] -= s.gx, a[j + 1] -= s.gy;
+  return a;
 }
 
 void UnifiedStep::add_structure_tangent(const StepSettings& s, const structure::AddEntry& put) const {

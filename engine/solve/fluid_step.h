@@ -49,7 +49,7 @@ namespace pfem {
 
 // The structure in the monolithic step: its nodes are nodes of the NodeState (kind Structure,
 // boundary nodes of the fluid mesh) whose velocities are shared with the fluid; each also has a
-// rotation rate. The structure adds F_ext - M (v - v_n)/dt - C v - Fs(u_n + dt v) to its rows
+// rotation rate. The structure adds F_ext - M ((v - v_n)/dt - g) - C v - Fs(u_n + dt v) to its rows
 // and M/dt + C + dt dFs/du to the Newton matrix (theory §4).
 struct StructureCoupling {
   structure::StructureModel* model = nullptr;
@@ -125,6 +125,9 @@ class UnifiedStep {
   void number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes, const StepSettings& s);
   // The structure's velocities, displacements at the iterate, and its residual rows added to rv_.
   void structure_residual(const StepSettings& s);
+  // (v - v_n)/dt - g at every structure dof (g at the translations): M times it is the inertia
+  // and the weight of the structure's masses.
+  Eigen::VectorXd structure_acceleration(const StepSettings& s, const Eigen::VectorXd& v) const;
   // Entries of M/dt + C + dt dFs/du at the structure's unknowns.
   void add_structure_tangent(const StepSettings& s, const structure::AddEntry& put) const;
   // Those entries in the lower triangle, at the current trial state.

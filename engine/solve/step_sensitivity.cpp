@@ -159,7 +159,7 @@ Eigen::VectorXd UnifiedStep::structure_sensitivity_rhs(const StepSettings& s, co
     if (s_dof_[j] >= 0) v[j] = v_[s_dof_[j]];
   Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
   model->add_tangent([&](int row, int col, double value) { r[row] -= value * dun[col]; });
-  r += model->mass_times(dvn) / s.dt - model->mass_sensitivity_times(k, (v - s_vn_) / s.dt) -
+  r += model->mass_times(dvn) / s.dt - model->mass_sensitivity_times(k, structure_acceleration(s, v)) -
        model->damping_sensitivity_times(k, v) - model->resisting_force_sensitivity(k);
   return r;
 }

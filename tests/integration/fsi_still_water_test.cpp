@@ -3,6 +3,7 @@
 // linearly from 0 at the tip to q0 = rho g L t at the base, and the small-deflection tip
 // deflection is q0 L^4 / (30 EI) and the base moment q0 L^2 / 6. The beam is stiff (deflection ~ 1e-3 L) so that the
 // linear theory holds; the monolithic step must carry the pressure into the beam's nodes.
+// Gravity acts on the structure's masses too: a dry cantilever sags under its own weight.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -55,6 +56,50 @@ TEST(FsiStillWater, CantileverSettlesToTheHydrostaticDeflection) {
   const double m_expected = q0 * kL * kL / 6.0;
   std::printf("base moment %.6e N m, q0 L^2/6 = %.6e N m\n", last[2], m_expected);
   EXPECT_NEAR(std::abs(last[2]), m_expected, 0.03 * m_expected);
+}
+
+// A horizontal cantilever out of a wall, clear of the water (a pool far away), with a tip mass:
+// damped, it settles to the static deflection of its weight, q L^4/(8 EI) + P L^3/(3 EI) with
+// q = rho_s A g and P = m g, and the clamp carries q L^2/2 + P L. Its sensitivity to rho_s is
+// that of the distributed weight alone, A g L^4/(8 EI).
+TEST(FsiStillWater, ADryCantileverSagsUnderItsOwnWeight) {
+  const auto model = parse_model_json(R"({
+    "name": "dry-cantilever", "thickness": 0.012,
+    "fluid": {"rho": 1000.0, "mu": 0.001, "kappa": 2.15e9},
+    "mesh": {"h": 0.01},
+    "fluid_regions": [{"rectangle": {"min": {"x": 0.3, "y": 0.0}, "max": {"x": 0.4, "y": 0.05}}}],
+    "walls": [{"points": [{"x": 0.3, "y": 0.1}, {"x": 0.3, "y": 0.0}, {"x": 0.4, "y": 0.0}, {"x": 0.4, "y": 0.1}]},
+              {"points": [{"x": 0.0, "y": 0.0}, {"x": 0.0, "y": 0.3}]}],
+    "structure": {
+      "nodes": [{"name": "root", "x": 0.0, "y": 0.2, "support": {"ux": true, "uy": true, "rz": true}},
+                {"name": "tip", "x": 0.1, "y": 0.2, "mass": {"x": 0.01, "y": 0.01}}],
+      "materials": [{"name": "stiff", "elastic": {"e": 1e8}}],
+      "sections": [{"name": "square", "fiber_rectangle": {"width": 0.012, "depth": 0.012, "fibers": 10, "material": "stiff"}}],
+      "beams": [{"name": "c", "from_node": "root", "to_node": "tip", "elements": 10,
+                 "element_type": "elastic", "section": "square", "rho": 2500.0}],
+      "rayleigh": {"a0": 30.0}
+    },
+    "analysis": {"dt": 0.002, "t_end": 0.4},
+    "recorders": [{"name": "tip_uy", "quantity": "uy", "node": "tip"},
+                  {"name": "root_moment", "quantity": "basic_force", "element": "c/1", "component": 1}],
+    "parameters": [{"name": "rho_s", "targets": ["beam.c.rho"]}]
+  })");
+  RunOptions options;
+  options.sensitivity = SensitivityMethod::kDdm;
+  const RunResult r = run(model, options);
+  ASSERT_EQ(r.summary.status, RunStatus::kCompleted) << r.summary.message;
+  constexpr double kLength = 0.1, kE = 1e8, kArea = kB * kB, kTipMass = 0.01;
+  const double ei = kE * kB * std::pow(kB, 3) / 12.0;
+  const double q = 2500.0 * kArea * kG, p = kTipMass * kG;
+  const double sag = q * std::pow(kLength, 4) / (8.0 * ei) + p * std::pow(kLength, 3) / (3.0 * ei);
+  const double moment = q * kLength * kLength / 2.0 + p * kLength;
+  const auto& last = r.responses.rows.back();
+  std::printf("tip sag %.6e m (closed form %.6e), clamp moment %.6e N m (%.6e)\n", -last[0], sag,
+              std::abs(last[1]), moment);
+  EXPECT_NEAR(-last[0], sag, 0.01 * sag);
+  EXPECT_NEAR(std::abs(last[1]), moment, 0.01 * moment);
+  const double dsag = kArea * kG * std::pow(kLength, 4) / (8.0 * ei);
+  EXPECT_NEAR(-r.sensitivities.rows.back()[0], dsag, 0.01 * dsag);
 }
 
 }  // namespace
