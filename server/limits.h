@@ -1,8 +1,9 @@
 #pragma once
 // Resource limits checked before a model is queued or run (RESOURCE_EXHAUSTED naming the
-// limit), and the estimates they are checked against.
+// limit), against the estimates of engine/io/model_size.h.
 #include <optional>
 
+#include "engine/io/model_size.h"
 #include "pfem/v1/model.pb.h"
 
 namespace pfem::server {
@@ -13,16 +14,6 @@ struct Limits {
   long max_steps = 1000000;    // ceil(t_end / dt) (--max-steps)
   int max_message_mb = 64;     // largest request or response message (--max-message-mb)
 };
-
-// Fluid particles the model starts with, estimated without building it: the area of every
-// fluid region (rectangle, or polygon by the shoelace formula) over h^2, rounded. 0 when h is
-// not a positive finite number (validation reports that).
-long estimate_particles(const pfem::v1::Model& model);
-
-// ceil(t_end / dt) (with a relative tolerance of 1e-9), the overrides taking precedence over
-// model.analysis; 0 when either is not a positive finite number.
-long count_steps(const pfem::v1::Model& model, std::optional<double> t_end,
-                 std::optional<double> dt);
 
 // Throws ServiceError(RESOURCE_EXHAUSTED) naming the limit when the run exceeds
 // max_particles or max_steps.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
 #include "server/convert.h"
 #include "server/status.h"
@@ -23,6 +24,8 @@ pfem::v1::Model check_run_request(
   check_run_limits(model,
                    options.has_t_end() ? std::optional<double>(options.t_end()) : std::nullopt,
                    options.has_dt() ? std::optional<double>(options.dt()) : std::nullopt, limits);
+  // What only building the model finds (within the limits, so the build is affordable).
+  if (auto build = model_errors(model); !build.empty()) throw_invalid(build);
   return model;
 }
 

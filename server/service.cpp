@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
 #include "server/convert.h"
 #include "server/functional.h"
@@ -73,7 +74,9 @@ grpc::Status GradientService::ValidateModel(grpc::ServerContext* context,
                                             const pfem::v1::ValidateModelRequest* request,
                                             pfem::v1::ValidateModelResponse* response) {
   return handle(context, [&] {
-    for (const auto& e : validate_model(request->model())) {
+    // Building the model finds more, but only a model within the particle limit is built.
+    const bool buildable = estimate_particles(request->model()) <= limits_.max_particles;
+    for (const auto& e : buildable ? model_errors(request->model()) : validate_model(request->model())) {
       auto* fe = response->add_errors();
       fe->set_path(e.path);
       fe->set_message(e.message);

@@ -8,6 +8,7 @@
 #include "engine/analysis/simulation.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
+#include "engine/io/model_size.h"
 
 namespace pfem {
 
@@ -19,6 +20,8 @@ void check_options(const RunOptions& o, const Problem& pb, std::vector<const Par
   if (o.t_end && !(std::isfinite(*o.t_end) && *o.t_end > 0)) errors.push_back({"t_end", "must be > 0"});
   if (o.dt && !(std::isfinite(*o.dt) && *o.dt > 0)) errors.push_back({"dt", "must be > 0"});
   if (o.vtk_every && *o.vtk_every < 1) errors.push_back({"vtk_every", "must be >= 1"});
+  if (o.threads < 1 || o.threads > kMaxThreads)
+    errors.push_back({"threads", "must be in [1, " + std::to_string(kMaxThreads) + "]"});
   if (!(std::isfinite(o.fdm_eps) && o.fdm_eps > 0 && o.fdm_eps < 0.1))
     errors.push_back({"fdm_eps", "must be in (0, 0.1)"});
   if (o.sensitivity != SensitivityMethod::kNone) {
@@ -53,7 +56,19 @@ Problem problem_with(const pfem::v1::Model& model, const Problem& base, const st
   return pb;
 }
 
-// Central differences: 2 runs per parameter, step eps*|value| (eps when the value is 0).
+// A problem_with for value, or nullopt when the model rejects that value (a parameter at a
+// bound of its range, as a viscosity of 0).
+std::optional<Problem> problem_if_valid(const pfem::v1::Model& model, const Problem& base, const std::string& name,
+                                        double value) {
+  try {
+    return problem_with(model, base, name, value);
+  } catch (const ModelError&) {
+    return std::nullopt;
+  }
+}
+
+// Central differences: 2 runs per parameter, step eps*|value| (eps when the value is 0); a
+// one-sided difference against the unperturbed run where one side leaves the parameter's range.
 void finite_differences(const pfem::v1::Model& model, const Problem& base, const RunOptions& o,
                         const std::vector<const ParameterSpec*>& params, RunResult& result) {
   const auto start = std::chrono::steady_clock::now();
@@ -68,8 +83,14 @@ void finite_differences(const pfem::v1::Model& model, const Problem& base, const
   std::vector<std::vector<std::vector<double>>> per_param;  // [param][row][recorder]
   for (const auto* p : params) {
     const double step = o.fdm_eps * (p->value != 0.0 ? std::abs(p->value) : 1.0);
-    const SimulationOutput a = simulate(problem_with(model, base, p->name, p->value + step), quiet);
-    const SimulationOutput b = simulate(problem_with(model, base, p->name, p->value - step), quiet);
+    const auto plus = problem_if_valid(model, base, p->name, p->value + step);
+    const auto minus = problem_if_valid(model, base, p->name, p->value - step);
+    if (!plus && !minus) problem_with(model, base, p->name, p->value + step);  // throws: why
+    SimulationOutput a, b;
+    a.responses = b.responses = result.responses;
+    if (plus) a = simulate(*plus, quiet);
+    if (minus) b = simulate(*minus, quiet);
+    const double width = (plus ? step : 0.0) + (minus ? step : 0.0);
     for (const auto* r : {&a, &b}) {
       if (r->summary.status != RunStatus::kCompleted || r->responses.rows.size() != sens.time.size()) {
         result.summary.status = r->summary.status == RunStatus::kCancelled ? RunStatus::kCancelled : RunStatus::kFailed;
@@ -81,7 +102,7 @@ void finite_differences(const pfem::v1::Model& model, const Problem& base, const
     std::vector<std::vector<double>> d(sens.time.size(), std::vector<double>(nrec));
     for (std::size_t i = 0; i < sens.time.size(); ++i)
       for (std::size_t j = 0; j < nrec; ++j)
-        d[i][j] = (a.responses.rows[i][j] - b.responses.rows[i][j]) / (2.0 * step);
+        d[i][j] = (a.responses.rows[i][j] - b.responses.rows[i][j]) / width;
     per_param.push_back(std::move(d));
   }
   for (std::size_t i = 0; i < sens.time.size(); ++i)
@@ -100,6 +121,9 @@ RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
   if (options.t_end) problem.t_end = *options.t_end;
   if (options.dt) problem.dt = *options.dt;
   if (problem.dt > problem.t_end) throw ModelError("dt", "must not exceed t_end");
+  if (const long steps = count_steps(problem.t_end, problem.dt); steps > kMaxSteps)
+    throw ModelError("t_end", "is " + std::to_string(steps) + " steps of dt, more than the " +
+                                  std::to_string(kMaxSteps) + " a run may take");
 
   std::optional<Problem> with_seeds;  // DDM: the problem with the parameters' seeds
   if (options.sensitivity == SensitivityMethod::kDdm) {

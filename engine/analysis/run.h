@@ -26,6 +26,8 @@ struct Progress {
   double remaining_seconds = 0.0;  // estimate from the mean step cost so far
 };
 
+inline constexpr int kMaxThreads = 256;
+
 struct RunOptions {
   std::optional<double> t_end;  // overrides analysis.t_end
   std::optional<double> dt;     // overrides analysis.dt
@@ -37,7 +39,7 @@ struct RunOptions {
   bool drop_geometric_terms = false;
   std::string vtk_dir;              // when set, write .vtu files and a .pvd there
   std::optional<int> vtk_every;     // overrides analysis.vtk_every
-  int threads = 1;                  // threads for element loops
+  int threads = 1;                  // threads for element loops, 1..kMaxThreads
   std::function<void(const Progress&)> progress;  // may be empty
   const std::atomic<bool>* cancel = nullptr;      // checked between steps (and Newton iterations)
 };

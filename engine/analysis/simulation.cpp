@@ -8,6 +8,7 @@
 
 #include "engine/analysis/recorders.h"
 #include "engine/mesh/particle_spacing.h"
+#include "engine/io/model_size.h"
 #include "engine/io/vtk_writer.h"
 #include "engine/solve/fluid_step.h"
 
@@ -104,7 +105,10 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   RunSummary& sum = out.summary;
   sum.dt = problem.dt;
   sum.t_end = problem.t_end;
-  const int total_steps = static_cast<int>(std::llround(problem.t_end / problem.dt));
+  // The last step is shortened to end at t_end when dt does not divide it.
+  const int total_steps = static_cast<int>(count_steps(problem.t_end, problem.dt));
+  const double last_dt = problem.t_end - (total_steps - 1) * problem.dt;
+  const bool short_last = last_dt < problem.dt * (1.0 - 1e-9);
   for (const auto& r : problem.recorders) out.responses.columns.push_back(r.name);
   const bool ddm = !problem.sensitivity_params.empty();
   for (const auto& r : problem.recorders)
@@ -126,7 +130,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   settings.thickness = problem.thickness;
   settings.gx = problem.gx;
   settings.gy = problem.gy;
-  settings.threads = std::max(1, options.threads);
+  settings.threads = options.threads;
   settings.walls = constraints;  // beams too: they move little within a step
   if (problem.unified_fractional_step) settings.formulation = StepSettings::Formulation::kGlobalBubble;
   if (structure) settings.structure = {&*structure, problem.structure_nodes};
@@ -154,7 +158,9 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   if (vtk) vtk->write(0.0, nodes, mesh);
 
   for (int n = 1; n <= total_steps; ++n) {
-    const double time = n * problem.dt;
+    const bool shortened = short_last && n == total_steps;
+    const double time = shortened ? problem.t_end : n * problem.dt;
+    settings.dt = shortened ? last_dt : problem.dt;
     if (options.cancel && options.cancel->load()) {
       sum.status = RunStatus::kCancelled;
       sum.message = "cancelled before step " + std::to_string(n);

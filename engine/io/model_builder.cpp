@@ -151,6 +151,17 @@ void sensitivity_seeds(const pfem::v1::Model& model, const std::vector<std::stri
 }
 }  // namespace
 
+std::vector<FieldError> model_errors(const pfem::v1::Model& model) {
+  auto errors = validate_model(model);
+  if (!errors.empty()) return errors;
+  try {
+    build_problem(model);
+  } catch (const ModelError& e) {
+    return e.errors();
+  }
+  return {};
+}
+
 Problem build_problem(const pfem::v1::Model& model, const std::vector<std::string>& sensitivity_params) {
   if (auto errors = validate_model(model); !errors.empty()) throw ModelError(std::move(errors));
   Problem pb;
@@ -217,12 +228,13 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
     if (pb.nodes.size() == before)
       errors.push_back({"fluid_regions[" + std::to_string(i) + "]", "holds no particle clear of the walls at spacing mesh.h"});
   }
-  for (std::size_t i = first_particle; i < pb.nodes.size(); ++i) {
-    if (!pb.domain.contains(pb.nodes.x[i], pb.nodes.y[i])) {
-      errors.push_back({"domain", "does not contain every fluid particle"});
-      break;
-    }
-  }
+  const auto any_outside = [&](std::size_t first, std::size_t last) {
+    for (std::size_t i = first; i < last; ++i)
+      if (!pb.domain.contains(pb.nodes.x[i], pb.nodes.y[i])) return true;
+    return false;
+  };
+  if (any_outside(0, first_particle)) errors.push_back({"domain", "does not contain every wall and structure node"});
+  if (any_outside(first_particle, pb.nodes.size())) errors.push_back({"domain", "does not contain every fluid particle"});
   if (!errors.empty()) throw ModelError(std::move(errors));
 
   for (const auto& r : model.recorders()) {

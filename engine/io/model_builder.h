@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "engine/analysis/problem.h"
+#include "engine/io/model_io.h"
 #include "pfem/v1/model.pb.h"
 
 namespace pfem {
@@ -13,5 +14,9 @@ namespace pfem {
 // the model's parameters to differentiate by DDM (seeds on the fluid and the structure, and
 // sensitivity storage on the nodes); the caller checks that they exist.
 Problem build_problem(const pfem::v1::Model& model, const std::vector<std::string>& sensitivity_params = {});
+
+// Every problem with the model: validate_model's, or when it passes, what building it finds
+// (a fluid region with no particle clear of the walls, a domain that leaves out a node).
+std::vector<FieldError> model_errors(const pfem::v1::Model& model);
 
 }  // namespace pfem

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "engine/io/geometry_bounds.h"
+#include "engine/io/model_size.h"
 
 namespace pfem {
 
@@ -143,6 +144,9 @@ void ModelChecker::check_fluid() {
 void ModelChecker::check_mesh() {
   if (!model_.has_mesh()) return error("mesh", "is required (h, alpha)");
   positive("mesh.h", model_.mesh().h());
+  if (const long particles = estimate_particles(model_); particles > kMaxParticles)
+    error("mesh.h", "gives about " + std::to_string(particles) + " fluid particles, more than the " +
+                        std::to_string(kMaxParticles) + " a run may take");
   if (model_.mesh().has_alpha()) {
     const double a = model_.mesh().alpha();
     if (!std::isfinite(a) || a < 0.8 || a > 3.0) error("mesh.alpha", "must be in [0.8, 3]");
@@ -250,6 +254,9 @@ void ModelChecker::check_analysis() {
   positive("analysis.t_end", a.t_end());
   if (std::isfinite(a.dt()) && std::isfinite(a.t_end()) && a.dt() > a.t_end())
     error("analysis.dt", "must not exceed analysis.t_end");
+  if (const long steps = count_steps(a.t_end(), a.dt()); steps > kMaxSteps)
+    error("analysis.t_end", "is " + std::to_string(steps) + " steps of analysis.dt, more than the " +
+                                std::to_string(kMaxSteps) + " a run may take");
   if (a.has_newton_tolerance()) {
     const double tol = a.newton_tolerance();
     if (!std::isfinite(tol) || tol <= 0 || tol >= 1) error("analysis.newton_tolerance", "must be in (0, 1)");

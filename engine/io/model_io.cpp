@@ -41,6 +41,7 @@ pfem::v1::Model parse_model_json(std::string_view json) {
 }
 
 pfem::v1::Model read_model_file(const std::filesystem::path& path) {
+  if (std::filesystem::is_directory(path)) throw ModelError(path.string(), "is a directory, not a model file");
   std::ifstream in(path);
   if (!in) throw ModelError(path.string(), "cannot open the model file");
   std::stringstream buffer;

@@ -223,6 +223,55 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
     f->info() = kept ? 1 : 0;
   }
 
+  // Pass 1a: triangles of wall and structure nodes only are water too where they close a
+  // pocket of the water: a connected group of them (across edges that are not walls or beams)
+  // bounded only by walls, beams and kept triangles, at least one of each (the corner between a
+  // floor and a beam standing on it, under water; the sliver between a wall's nodes and the
+  // water where the wall line zigzags). Left out, their edges to the water would act
+  // as a free surface: the water's pressure would push the beam's first nodes into the corner (a
+  // spurious axial force and moment at a submerged beam's base).
+  constexpr int kKept = 1, kVisited = 2, kPocket = 3;
+  const auto no_particle = [&](Delaunay::Face_handle f) {
+    for (int k = 0; k < 3; ++k)
+      if (kind[f->vertex(k)->info()] == NodeKind::Fluid) return false;
+    return true;
+  };
+  std::vector<Delaunay::Face_handle> group, stack;
+  for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
+    if (f->info() != 0 || !no_particle(f)) continue;
+    group.clear();
+    stack.assign(1, f);
+    f->info() = kVisited;
+    bool closed = true, wet = false, walled = false;
+    while (!stack.empty()) {
+      const auto g = stack.back();
+      stack.pop_back();
+      group.push_back(g);
+      closed = closed && passes_alpha_test(g->vertex(0)->point(), g->vertex(1)->point(),
+                                           g->vertex(2)->point(), max_radius);
+      for (int k = 0; k < 3; ++k) {
+        if (g->is_constrained(k)) {
+          walled = true;
+          continue;
+        }
+        const auto across = g->neighbor(k);
+        if (tri.is_infinite(across)) {
+          closed = false;
+        } else if (across->info() == kKept) {
+          wet = true;
+        } else if (across->info() == 0 && no_particle(across)) {
+          across->info() = kVisited;
+          stack.push_back(across);
+        } else if (across->info() == 0) {
+          closed = false;  // a triangle with a particle that the alpha test dropped: open to the air
+        }
+      }
+    }
+    for (auto g : group) g->info() = closed && wet && walled ? kPocket : kVisited;
+  }
+  for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f)
+    f->info() = f->info() == kKept || f->info() == kPocket ? 1 : 0;
+
   // Pass 1b: drop "hanging" triangles: two wall/structure nodes and one fluid particle on the
   // boundary (on a free edge) whose wall edge lies wholly at or above the particle (neither
   // wall node more than a tenth of h below it, along gravity). They wet the wall above the

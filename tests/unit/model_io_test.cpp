@@ -279,6 +279,42 @@ TEST_F(PfemCommand, MalformedJsonIsOneLineAndExitTwo) {
   }
 }
 
+// Bad options and outputs are refused before any simulation, naming the flag or field.
+TEST_F(PfemCommand, BadOptionsAndOutputsAreRefusedUpFront) {
+  const std::string model = "'" + source("examples/hydrostatic.json") + "'";
+  const std::string out = " --out '" + (dir_ / "out").string() + "'";
+  for (const std::string threads : {"0", "-1", "100000"}) {
+    const Command c = pfem("run " + model + out + " --threads " + threads);
+    EXPECT_EQ(c.exit_code, 2) << threads;
+    EXPECT_EQ(c.stderr_lines, std::vector<std::string>{"threads: must be in [1, 256]"}) << joined(c.stderr_lines);
+  }
+  Command c = pfem("run " + model + out + " --t-end 1e300");
+  EXPECT_EQ(c.exit_code, 2);
+  ASSERT_EQ(c.stderr_lines.size(), 1u) << joined(c.stderr_lines);
+  EXPECT_EQ(c.stderr_lines[0].rfind("t_end: is ", 0), 0u) << c.stderr_lines[0];
+  c = pfem("run " + model + out + " --params rho_f");
+  EXPECT_EQ(c.exit_code, 2);
+  EXPECT_EQ(c.stderr_lines.at(0), "pfem: --params needs --sensitivity ddm or fdm");
+  const fs::path file = write("a_file", "");
+  c = pfem("run " + model + " --out '" + file.string() + "'");
+  EXPECT_EQ(c.exit_code, 2);
+  ASSERT_EQ(c.stderr_lines.size(), 1u) << joined(c.stderr_lines);
+  EXPECT_EQ(c.stderr_lines[0].rfind("pfem: --out: cannot create " + file.string(), 0), 0u) << c.stderr_lines[0];
+  c = pfem("validate '" + dir_.string() + "'");
+  EXPECT_EQ(c.exit_code, 2);
+  EXPECT_EQ(c.stderr_lines, std::vector<std::string>{dir_.string() + ": is a directory, not a model file"});
+}
+
+// What only building the model finds is reported by validate too (exit 2, one line each).
+TEST_F(PfemCommand, ValidateReportsWhatTheBuildFinds) {
+  const fs::path bad = write("small_domain.json", edited_json("\"mesh\"", "\"domain\": {\"min\": {\"x\": 0.0, \"y\": 0.0}, \"max\": {\"x\": 0.01, \"y\": 0.01}}, \"mesh\""));
+  const Command c = pfem("validate '" + bad.string() + "'");
+  EXPECT_EQ(c.exit_code, 2);
+  EXPECT_EQ(c.stderr_lines, (std::vector<std::string>{"domain: does not contain every wall and structure node",
+                                                      "domain: does not contain every fluid particle"}))
+      << joined(c.stderr_lines);
+}
+
 TEST_F(PfemCommand, ValidExampleValidates) {
   const Command v = pfem("validate '" + source("examples/hydrostatic.json") + "'");
   EXPECT_EQ(v.exit_code, 0) << "stderr:" << joined(v.stderr_lines);

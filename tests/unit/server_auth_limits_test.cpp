@@ -57,12 +57,12 @@ TEST(ServerLimits, ParticlesAndSteps) {
     p->set_x(x);
     p->set_y(y);
   }
-  EXPECT_EQ(pfem::server::estimate_particles(model), 200 + 50);
+  EXPECT_EQ(pfem::estimate_particles(model), 200 + 50);
   model.mutable_analysis()->set_t_end(0.5);
   model.mutable_analysis()->set_dt(0.002);
-  EXPECT_EQ(pfem::server::count_steps(model, std::nullopt, std::nullopt), 250);
-  EXPECT_EQ(pfem::server::count_steps(model, 0.01, std::nullopt), 5);
-  EXPECT_EQ(pfem::server::count_steps(model, std::nullopt, 0.003), 167);
+  EXPECT_EQ(pfem::count_steps(model, std::nullopt, std::nullopt), 250);
+  EXPECT_EQ(pfem::count_steps(model, 0.01, std::nullopt), 5);
+  EXPECT_EQ(pfem::count_steps(model, std::nullopt, 0.003), 167);
 
   pfem::server::Limits limits;
   limits.max_particles = 249;

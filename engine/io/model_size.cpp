@@ -1,0 +1,39 @@
+#include "engine/io/model_size.h"
+
+#include <cmath>
+
+#include "engine/io/geometry_bounds.h"
+
+namespace pfem {
+
+long estimate_particles(const pfem::v1::Model& model) {
+  const double h = model.mesh().h();
+  if (!(h > 0.0) || !std::isfinite(h)) return 0;
+  double total = 0.0;
+  for (const auto& region : model.fluid_regions()) {
+    double area = 0.0;
+    if (region.has_rectangle()) {
+      const auto& r = region.rectangle();
+      area = std::abs((r.max().x() - r.min().x()) * (r.max().y() - r.min().y()));
+    } else if (region.has_polygon()) {
+      area = std::abs(polygon_area(region.polygon()));
+    }
+    total += area / (h * h);
+  }
+  if (!std::isfinite(total)) return 0;
+  if (total > 1e15) return static_cast<long>(1e15);
+  return std::lround(total);
+}
+
+long count_steps(double t_end, double dt) {
+  if (!(t_end > 0.0) || !(dt > 0.0) || !std::isfinite(t_end) || !std::isfinite(dt)) return 0;
+  const double n = t_end / dt;
+  if (!std::isfinite(n) || n > 1e15) return static_cast<long>(1e15);
+  return static_cast<long>(std::ceil(n * (1.0 - 1e-9)));
+}
+
+long count_steps(const pfem::v1::Model& model, std::optional<double> t_end, std::optional<double> dt) {
+  return count_steps(t_end.value_or(model.analysis().t_end()), dt.value_or(model.analysis().dt()));
+}
+
+}  // namespace pfem

@@ -1,0 +1,27 @@
+#pragma once
+// How big a run is, estimated from the model without building it: shared by validation (the
+// engine's own caps) and the server's resource limits.
+#include <optional>
+
+#include "pfem/v1/model.pb.h"
+
+namespace pfem {
+
+// Beyond these the engine refuses a model: a 2D run of more particles or steps would exhaust
+// the memory or run for months; validation says so instead of starting it.
+inline constexpr long kMaxParticles = 10'000'000;
+inline constexpr long kMaxSteps = 1'000'000'000;
+
+// Fluid particles the model starts with: the area of every fluid region (rectangle, or polygon
+// by the shoelace formula) over h^2, rounded (capped at 1e15). 0 when h is not a positive
+// finite number (validation reports that).
+long estimate_particles(const pfem::v1::Model& model);
+
+// The steps of a run, ceil(t_end / dt) with a relative tolerance of 1e-9 (the last step is
+// shortened to end at t_end), the overrides taking precedence over model.analysis (capped at
+// 1e15); 0 when either is not a positive finite number.
+long count_steps(const pfem::v1::Model& model, std::optional<double> t_end = std::nullopt,
+                 std::optional<double> dt = std::nullopt);
+long count_steps(double t_end, double dt);
+
+}  // namespace pfem
