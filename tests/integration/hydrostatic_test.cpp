@@ -57,5 +57,23 @@ TEST(Hydrostatic, StillWaterStaysStillWithRhoGHAtTheBottom) {
   EXPECT_LT(worst_area, 0.01);
 }
 
+// A step dt that does not divide t_end: the last step is shortened so that the run ends at
+// t_end (not one dt past it), and the water is still at rest with its pressure.
+TEST(Hydrostatic, TheLastStepEndsAtTEnd) {
+  const auto model = read_model_file(std::string(PFEM_SOURCE_DIR) + "/examples/hydrostatic.json");
+  RunOptions options;
+  options.t_end = 0.05;
+  options.dt = 0.02;
+  const RunResult r = run(model, options);
+  ASSERT_EQ(r.summary.status, RunStatus::kCompleted) << r.summary.message;
+  EXPECT_EQ(r.summary.steps, 3);
+  ASSERT_EQ(r.responses.time.size(), 4u);
+  EXPECT_DOUBLE_EQ(r.responses.time[2], 0.04);
+  EXPECT_DOUBLE_EQ(r.responses.time[3], 0.05);
+  const int bottom_p = column(r.responses, "bottom_p");
+  ASSERT_GE(bottom_p, 0);
+  EXPECT_NEAR(r.responses.rows.back()[bottom_p], model.fluid().rho() * 9.81 * 0.2, 2.0);
+}
+
 }  // namespace
 }  // namespace pfem
