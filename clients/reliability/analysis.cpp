@@ -1,6 +1,7 @@
 #include "clients/reliability/analysis.h"
 
 #include <chrono>
+#include <cmath>
 
 namespace pfem::reliability {
 
@@ -32,8 +33,9 @@ AnalysisResult analyze(const Problem& problem, const LimitState& g, const Analys
   const NatafTransform& transform = *problem.transform;
   AnalysisResult r;
   r.form = run_form(g, transform, options.form);
-  if (options.sensitivities) r.sensitivities = beta_sensitivities(transform, r.form);
-  if (options.sorm) r.sorm = run_sorm(g, transform, r.form, options.sorm_options);
+  const bool design_point = std::isfinite(r.form.beta);  // what the rest builds on
+  if (options.sensitivities && design_point) r.sensitivities = beta_sensitivities(transform, r.form);
+  if (options.sorm && design_point) r.sorm = run_sorm(g, transform, r.form, options.sorm_options);
   if (options.importance_sampling > 0) {
     r.importance_sampling =
         importance_sampling(g, transform, r.form.u, {options.importance_sampling, options.seed});

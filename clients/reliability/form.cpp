@@ -1,6 +1,7 @@
 #include "clients/reliability/form.h"
 
 #include <cmath>
+#include <limits>
 
 #include "clients/reliability/form_search.h"
 
@@ -72,10 +73,13 @@ FormResult run_form(const LimitState& g, const NatafTransform& transform,
   r.u = s.u;
   r.g = s.g;
   r.gradient_u = s.gradient;
-  const double gn = s.gradient.norm();
+  const double gn = s.has_gradient ? s.gradient.norm() : 0.0;
   r.alpha = gn > 0 ? Eigen::VectorXd(-s.gradient / gn) : Eigen::VectorXd::Zero(n);
-  r.beta = r.alpha.dot(r.u);
-  r.pf = standard_normal_cdf(-r.beta);
+  // Without a gradient (g not finite, or flat) there is no design point: beta and pf are NaN
+  // (null in result.json), not the 0 and 0.5 of a zero alpha.
+  const bool defined = gn > 0 && std::isfinite(gn) && std::isfinite(s.g);
+  r.beta = defined ? r.alpha.dot(r.u) : std::numeric_limits<double>::quiet_NaN();
+  r.pf = defined ? standard_normal_cdf(-r.beta) : std::numeric_limits<double>::quiet_NaN();
   Eigen::MatrixXd jacobian;
   r.x = transform.to_x(r.u, jacobian);
   // gamma = alpha^T J_ux D / ||.||, D = diag of the standard deviations of the linearised x.

@@ -72,6 +72,11 @@ SearchOutcome search_nlopt(StandardSpaceFunction& G, const Eigen::VectorXd& u0,
   SearchOutcome out;
   const int n = G.size();
   const double g0 = G.value(u0);
+  if (!std::isfinite(g0)) {
+    out.u = u0;
+    out.message = "g is not finite at the start point";
+    return out;
+  }
   Context ctx{&G, std::abs(g0) > 0 && std::isfinite(g0) ? std::abs(g0) : 1.0, &options, 0, nullptr};
   const bool slsqp = options.method == FormMethod::kSlsqp;
   nlopt::opt opt(slsqp ? nlopt::LD_SLSQP : nlopt::LN_COBYLA, static_cast<unsigned>(n));

@@ -271,20 +271,34 @@ class Evaluator {
     if (!p_.functionals.empty()) {
       values = model_.evaluate(p_.names, x, p_.functionals, true).values;
     }
-    const auto quantity = [&](const Quantity& q, std::vector<double>& gradient) {
+    // A value and its gradient; a non-finite one stops the run naming it and the point (the
+    // optimiser would otherwise step to NaN and fail on the model instead).
+    const auto quantity = [&](const Quantity& q, std::vector<double>& gradient, const std::string& what) {
       gradient.assign(n, 0.0);
-      if (q.expression) return q.expression->evaluate(x, gradient);
-      const FunctionalValue& f = values.at(static_cast<std::size_t>(q.functional));
-      gradient = f.gradient;
-      return f.value;
+      double value;
+      if (q.expression) {
+        value = q.expression->evaluate(x, gradient);
+      } else {
+        const FunctionalValue& f = values.at(static_cast<std::size_t>(q.functional));
+        gradient = f.gradient;
+        value = f.value;
+      }
+      bool finite = std::isfinite(value);
+      for (const double d : gradient) finite = finite && std::isfinite(d);
+      if (!finite) {
+        std::string at;
+        for (std::size_t i = 0; i < n; ++i) at += (i ? ", " : "") + p_.names[i] + " = " + std::to_string(x[i]);
+        throw std::runtime_error(what + " or its gradient is not finite at " + at);
+      }
+      return value;
     };
     Evaluation e;
     e.index = static_cast<int>(history_.size()) + 1;
     e.x = x;
-    e.objective = quantity(p_.objective, e.objective_gradient);
+    e.objective = quantity(p_.objective, e.objective_gradient, "the objective");
     for (const auto& c : p_.constraints) {
       std::vector<double> g;
-      e.constraints.push_back(quantity(c.quantity, g));
+      e.constraints.push_back(quantity(c.quantity, g, "constraint '" + c.name + "'"));
       e.constraint_gradients.push_back(std::move(g));
       e.max_violation = std::max(e.max_violation, violation(c, e.constraints.back()));
     }

@@ -139,6 +139,10 @@ std::string summary_text(const Problem& problem, const AnalysisResult& result,
     if (s.cached > 0) out << ", " << s.cached << " answered from the server's cache";
     out << "), " << fmt("%.1f", s.seconds) << " s in the simulations\n";
   }
+  if (!std::isfinite(f.beta)) {
+    out << "      no design point: beta and pf are undefined\n";
+    return out.str();
+  }
   out << "      beta = " << fmt("%.6g", f.beta) << "   pf = " << fmt("%.6e", f.pf) << "\n\n";
   char line[256];
   std::snprintf(line, sizeof line, "  %-10s %-16s %11s %11s %12s %9s %8s %12s %12s\n", "variable",

@@ -56,6 +56,7 @@ struct Problem {
   std::vector<std::array<std::int32_t, 2>> beam_segments;  // node pairs of every beam element
   std::optional<structure::StructureModel> structure;     // with its nodes in `nodes`:
   std::vector<int> structure_nodes;                        // node index of each structure node
+  bool structure_self_weight = true;                       // structure.self_weight
   std::vector<RecorderSpec> recorders;
   std::vector<ParameterSpec> parameters;
   // DDM: the parameters differentiated, in order, and how each moves the fluid constants (the

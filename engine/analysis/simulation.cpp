@@ -133,7 +133,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   settings.threads = options.threads;
   settings.walls = constraints;  // beams too: they move little within a step
   if (problem.unified_fractional_step) settings.formulation = StepSettings::Formulation::kGlobalBubble;
-  if (structure) settings.structure = {&*structure, problem.structure_nodes};
+  if (structure) settings.structure = {&*structure, problem.structure_nodes, problem.structure_self_weight};
   settings.sensitivity = problem.fluid_seeds;
   settings.geometric_terms = !options.drop_geometric_terms;
   UnifiedStep step;

@@ -218,6 +218,7 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
       }
     }
     element_by_name = sb.element_index;
+    pb.structure_self_weight = !model.structure().has_self_weight() || model.structure().self_weight();
     pb.structure = std::move(sb.model);
   }
   const std::size_t first_particle = pb.nodes.size();

@@ -435,6 +435,7 @@ void UnifiedStep::structure_residual(const StepSettings& s) {
 
 Eigen::VectorXd UnifiedStep::structure_acceleration(const StepSettings& s, const Eigen::VectorXd& v) const {
   Eigen::VectorXd a = (v - s_vn_) / s.dt;
+  if (!s.structure.self_weight) return a;
   for (long j = 0; j < a.size(); j += 3) a[j] -= s.gx, a[j + 1] -= s.gy;
   return a;
 }

@@ -53,7 +53,8 @@ namespace pfem {
 // and M/dt + C + dt dFs/du to the Newton matrix (theory §4).
 struct StructureCoupling {
   structure::StructureModel* model = nullptr;
-  std::vector<int> node;  // NodeState index of each structure node
+  std::vector<int> node;     // NodeState index of each structure node
+  bool self_weight = true;  // gravity acts on its masses
 };
 
 struct StepSettings {
@@ -125,8 +126,8 @@ class UnifiedStep {
   void number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes, const StepSettings& s);
   // The structure's velocities, displacements at the iterate, and its residual rows added to rv_.
   void structure_residual(const StepSettings& s);
-  // (v - v_n)/dt - g at every structure dof (g at the translations): M times it is the inertia
-  // and the weight of the structure's masses.
+  // (v - v_n)/dt - g at every structure dof (g at the translations; 0 without self-weight): M
+  // times it is the inertia and the weight of the structure's masses.
   Eigen::VectorXd structure_acceleration(const StepSettings& s, const Eigen::VectorXd& v) const;
   // Entries of M/dt + C + dt dFs/du at the structure's unknowns.
   void add_structure_tangent(const StepSettings& s, const structure::AddEntry& put) const;

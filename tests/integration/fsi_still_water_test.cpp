@@ -3,7 +3,8 @@
 // linearly from 0 at the tip to q0 = rho g L t at the base, and the small-deflection tip
 // deflection is q0 L^4 / (30 EI) and the base moment q0 L^2 / 6. The beam is stiff (deflection ~ 1e-3 L) so that the
 // linear theory holds; the monolithic step must carry the pressure into the beam's nodes.
-// Gravity acts on the structure's masses too: a dry cantilever sags under its own weight.
+// Gravity acts on the structure's masses too (unless structure.self_weight is false): a dry
+// cantilever sags under its own weight.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -100,6 +101,14 @@ TEST(FsiStillWater, ADryCantileverSagsUnderItsOwnWeight) {
   EXPECT_NEAR(std::abs(last[1]), moment, 0.01 * moment);
   const double dsag = kArea * kG * std::pow(kLength, 4) / (8.0 * ei);
   EXPECT_NEAR(-r.sensitivities.rows.back()[0], dsag, 0.01 * dsag);
+
+  // Without self-weight nothing loads it.
+  auto weightless = model;
+  weightless.mutable_structure()->set_self_weight(false);
+  const RunResult still = run(weightless, options);
+  ASSERT_EQ(still.summary.status, RunStatus::kCompleted) << still.summary.message;
+  EXPECT_EQ(still.responses.rows.back()[0], 0.0);
+  EXPECT_EQ(still.sensitivities.rows.back()[0], 0.0);
 }
 
 // A beam standing on the floor of a box of still water, upright or leaning at 45 degrees, has

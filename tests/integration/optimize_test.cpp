@@ -83,6 +83,21 @@ TEST(Optimize, KnownOptimumOfExpressionsWithoutSimulations) {
   }
 }
 
+// An objective that is not finite stops the run, naming it and the point (not NaN design
+// variables handed to the model); at the start point it throws.
+TEST(Optimize, ANonFiniteObjectiveStopsNamingIt) {
+  auto m = expression_problem();
+  m.mutable_objective()->mutable_quantity()->set_expression("width / 0");
+  const opt::Problem p = opt::build_problem(m);
+  const auto evaluator = rel::make_evaluator(p.model, {});
+  try {
+    opt::optimize(p, *evaluator);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "the objective or its gradient is not finite at width = 0.012000, depth = 0.012000");
+  }
+}
+
 TEST(Optimize, ExampleConvergesThroughTheBinary) {
   TempDir dir("optimize_cli");
   const CliRun run = pfem_optimize(kExample + " --out " + dir.path.string(), dir.path);

@@ -424,6 +424,25 @@ TEST(ReliabilityForm, NegativeBetaWhenTheMeanPointFails) {
   EXPECT_NEAR(r.pf, 1.0 - phi_minus(6.5 / std::sqrt(4.65)), 1e-12);
 }
 
+// Where g is not finite at the start, or flat there, there is no design point: every method
+// says why, and beta and pf are NaN (null in result.json), not the 0 and 0.5 of a zero alpha.
+TEST(ReliabilityForm, NoDesignPointLeavesBetaUndefined) {
+  for (const auto method : {FormMethod::kIhlrf, FormMethod::kSlsqp, FormMethod::kCobyla}) {
+    Case c = linear_normal_case();
+    for (const std::string expression : {"x1 - x2 / 0", "1 + 0 * x1"}) {
+      c.expression = expression;
+      const rel::FormResult r = form(c, method);
+      SCOPED_TRACE(expression + " " + std::string(rel::to_string(method)));
+      EXPECT_FALSE(r.converged);
+      EXPECT_TRUE(std::isnan(r.beta)) << r.beta;
+      EXPECT_TRUE(std::isnan(r.pf)) << r.pf;
+      if (expression == "x1 - x2 / 0") {
+        EXPECT_EQ(r.message, "g is not finite at the start point");
+      }
+    }
+  }
+}
+
 // A limit state whose gradient disagrees with its values, as a PFEM response's exact gradient
 // does across a jump where a remeshing decision changes: g = 3 - x1, but dg/dx1 reported +1.
 // Every step along the search direction raises the merit function; iHL-RF stops after two line
