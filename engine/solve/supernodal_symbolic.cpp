@@ -103,15 +103,20 @@ SupernodalStructure supernodal_symbolic(int n, std::span<const int> group,
     if (k < 0 || k >= n) throw std::invalid_argument("supernodal_symbolic: a last unknown out of range");
     trailing[g[k]] = 1;
   }
-  const bool constrained = std::find(trailing.begin(), trailing.end(), 1) != trailing.end();
+  // (CAMD's constraint sets must be numbered below ng: with every group trailing, order freely.)
+  const bool constrained = std::find(trailing.begin(), trailing.end(), 1) != trailing.end() &&
+                           std::find(trailing.begin(), trailing.end(), 0) != trailing.end();
 
   // Fill-reducing order of the groups.
   const Lists graph = group_graph(pairs, ng);
   std::vector<int> order(ng);
   if (ng > 0) {
-    const int status = constrained ? camd_order(ng, graph.start.data(), graph.item.data(), order.data(), nullptr,
-                                                nullptr, trailing.data())
-                                   : amd_order(ng, graph.start.data(), graph.item.data(), order.data(), nullptr, nullptr);
+    // AMD refuses a null row-index array, which an empty vector may give (one isolated group).
+    const int no_item = 0;
+    const int* items = graph.item.empty() ? &no_item : graph.item.data();
+    const int status = constrained ? camd_order(ng, graph.start.data(), items, order.data(), nullptr, nullptr,
+                                                trailing.data())
+                                   : amd_order(ng, graph.start.data(), items, order.data(), nullptr, nullptr);
     if (status < AMD_OK) throw std::runtime_error("the fill-reducing ordering (AMD) failed");
   }
   std::vector<int> position(ng);

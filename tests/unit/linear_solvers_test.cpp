@@ -291,6 +291,24 @@ TEST(SupernodalLdlt, RefusesAChangeOutsideTheLastUnknowns) {
   EXPECT_THROW(ldlt.analyze(a, std::vector<int>(n - 1, 0)), std::invalid_argument);
 }
 
+// The smallest systems the engine meets when the water is almost gone: one node (its two
+// velocity unknowns in one group, no coupling to any other), also when it is the structure's
+// (every unknown ordered last).
+TEST(SupernodalLdlt, OneIsolatedGroupAndEveryUnknownLast) {
+  SparseMatrix a(2, 2);
+  a.insert(0, 0) = 4.0;
+  a.insert(1, 1) = -2.0;
+  a.makeCompressed();
+  for (const std::vector<int>& last : {std::vector<int>{}, std::vector<int>{0, 1}}) {
+    SupernodalLdlt ldlt;
+    ldlt.analyze(a, std::vector<int>{7, 7}, last);
+    ASSERT_TRUE(ldlt.factorize(a));
+    const Eigen::MatrixXd x = solved(ldlt, Eigen::Vector2d(1.0, 1.0));
+    EXPECT_DOUBLE_EQ(x(0, 0), 0.25);
+    EXPECT_DOUBLE_EQ(x(1, 0), -0.5);
+  }
+}
+
 // Whether SupernodalLdlt factorises a, and whether CHOLMOD's LDL^T does.
 std::pair<bool, bool> factorises(const SparseMatrix& a) {
   SupernodalLdlt ldlt;
