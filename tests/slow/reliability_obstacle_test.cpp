@@ -1,7 +1,7 @@
 // FORM on examples/reliability/dam-break-obstacle.json (the paper's yielding obstacle to
-// 0.3 s, E and Fy lognormal, g = 0.072 m - max |tip_ux|) in-process with DDM gradients: it
-// converges to the design point found through a pfem-server (README, "Reliability of a PFEM
-// model"). About 10 simulations of ~25 s each.
+// 0.3 s, E and Fy lognormal, g = 0.075 m - max |tip_ux|) in-process with DDM gradients: it
+// converges on the limit state (README, "Reliability of a PFEM model"). About 5 simulations of
+// ~8 s each.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,12 +25,14 @@ TEST(ReliabilityObstacle, FormWithDdmConverges) {
               r.simulations->simulations, r.wall_seconds);
   ASSERT_TRUE(r.form.converged) << r.form.message;
   // The design point lies on the limit state: a fresh simulation there gives g = 0 (to 0.1 % of
-  // the 72 mm threshold). beta moves with the engine's remeshing rules (3.647 through the server
-  // in session 2, 3.600 after the boundary alpha, 3.379 with the interior insertion length,
-  // 3.359 with the structure's tangent at every iterate): a band, not a reference value.
+  // the 75 mm threshold). beta moves with the engine's physics and remeshing rules (at 72 mm:
+  // 3.647 through the server in session 2, 3.600 after the boundary alpha, 3.379 with the
+  // interior insertion length, 3.359 with the structure's tangent at every iterate; the
+  // obstacle's own weight then raised its deflection by ~5 mm, and the threshold to 75 mm gives
+  // 2.772): a band, not a reference value.
   const std::vector<double> x_star(r.form.x.data(), r.form.x.data() + r.form.x.size());
-  EXPECT_LT(std::abs(g->evaluate(x_star, {})), 1e-3 * 0.072);
-  EXPECT_NEAR(r.form.beta, 3.5, 0.2);
+  EXPECT_LT(std::abs(g->evaluate(x_star, {})), 1e-3 * 0.075);
+  EXPECT_NEAR(r.form.beta, 2.77, 0.2);
   // The yield stress drives the peak deflection: a weaker obstacle at the design point.
   EXPECT_LT(r.form.x(1), 5e4);
   EXPECT_GT(std::abs(r.form.alpha(1)), std::abs(r.form.alpha(0)));
