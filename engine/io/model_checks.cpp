@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "engine/io/geometry_bounds.h"
 #include "engine/io/model_size.h"
@@ -33,6 +34,11 @@ std::string at(const std::string& path, int i) { return path + "[" + std::to_str
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 constexpr int kMaxBeamElements = 10000;
+// Beam elements longer than this many particle spacings let water through: a particle at
+// h/2 from an element of length l makes a triangle of circumradius (l^2 + h^2) / (4 h) with its
+// ends, which fails the alpha test (1.2 h by default) once l approaches 2 h; the particle is
+// then in no triangle, falls through the beam and is taken out.
+constexpr double kMaxBeamElementSpacings = 1.5;
 constexpr int kMaxFibers = 1000;
 constexpr int kMaxIntegrationPoints = 10;  // as structure::DispBeamColumn2d
 
@@ -558,6 +564,14 @@ void ModelChecker::check_beams() {
       const double scale = std::max(std::hypot(from->x(), from->y()), std::hypot(to->x(), to->y()));
       const int n = std::max(1, b.elements());
       if (length == 0.0 || !(length / n > 1e-12 * scale)) error(path, "has zero length");
+      const double h = model_.mesh().h();
+      if (b.elements() >= 1 && std::isfinite(h) && h > 0 && length / n > kMaxBeamElementSpacings * h) {
+        std::ostringstream why;
+        why << "gives elements of " << length / n << " m, longer than " << kMaxBeamElementSpacings
+            << " mesh.h: water would pass between the beam's nodes; use at least "
+            << static_cast<long>(std::ceil(length / (kMaxBeamElementSpacings * h)));
+        error(path + ".elements", why.str());
+      }
     }
     const bool elastic = b.element_type() == "elastic";
     if (b.element_type().empty())

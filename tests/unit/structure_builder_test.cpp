@@ -413,6 +413,18 @@ TEST(SloshingBeam, ExampleValidates) {
   EXPECT_EQ(build.model.num_elements(), 40);
 }
 
+// Beam elements much longer than the particle spacing would let water through between their
+// nodes: an error naming the count that would do (the example's 40 elements are one h each).
+TEST(SloshingBeam, ElementsLongerThanOneAndAHalfSpacingsAreRefused) {
+  auto m = sloshing();  // beam 0.1 m, mesh.h 0.0025 m
+  m.mutable_structure()->mutable_beams(0)->set_elements(26);  // 1.54 h
+  expect_single_error(validate_model(m), "structure.beams[0].elements",
+                      "gives elements of 0.00384615 m, longer than 1.5 mesh.h: water would pass between the "
+                      "beam's nodes; use at least 27");
+  m.mutable_structure()->mutable_beams(0)->set_elements(27);  // 1.48 h
+  EXPECT_TRUE(validate_model(m).empty()) << describe(validate_model(m));
+}
+
 TEST(SloshingBeam, RecorderNodesResolveAgainstStructureNames) {
   auto m = sloshing();
   add_recorder(m, "uy").set_node("beam/39");
