@@ -310,6 +310,11 @@ std::vector<FieldError> check(const pfem::v1::ReliabilityProblem& msg, Problem* 
                                                     "' (expected one of " + join(kFunctionals, ", ") + ")"});
       } else if (m.functional() == "at_time" && !m.has_time()) {
         errors.push_back({path + ".time", "is required for at_time"});
+      } else if (m.functional() == "at_time" && m.has_model() &&
+                 !(m.time() >= 0.0 && m.time() <= m.model().analysis().t_end())) {
+        std::ostringstream why;
+        why << "must be in [0, " << m.model().analysis().t_end() << "] (the model's analysis.t_end)";
+        errors.push_back({path + ".time", why.str()});
       } else if (m.functional() != "at_time" && m.has_time()) {
         errors.push_back({path + ".time", "only used with at_time"});
       }

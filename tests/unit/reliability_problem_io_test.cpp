@@ -125,13 +125,16 @@ TEST(ReliabilityProblemIo, LimitStateAndMethodErrors) {
             (Errors{"limit_state.model.functional: unknown functional 'mean' (expected one of "
                     "at_time, max, min, max_abs, final)",
                     "limit_state.model.parameters[\"Q\"]: unknown variable 'Q'"}));
+  EXPECT_EQ(errors_of(problem(kRS, R"(, "limit_state": {"model": {"model": {"analysis": {"t_end": 0.4}},
+              "recorder": "p", "functional": "at_time", "time": 0.5, "threshold": 1}})")),
+            Errors{"limit_state.model.time: must be in [0, 0.4] (the model's analysis.t_end)"});
 }
 
 // The model limit state itself (clients/reliability/model_limit_state.h) needs the engine or a
 // server; this library alone validates the file and refuses to build it.
 TEST(ReliabilityProblemIo, ModelLimitStateIsValidatedAndNeedsAnEvaluator) {
   const rel::Problem p = rel::build_problem(rel::parse_problem_json(problem(
-      kRS, R"(, "limit_state": {"model": {"model": {"name": "m"}, "recorder": "p",
+      kRS, R"(, "limit_state": {"model": {"model": {"name": "m", "analysis": {"t_end": 1}}, "recorder": "p",
               "functional": "at_time", "time": 0.5, "threshold": 1, "parameters": {"R": "rho"}}})")));
   EXPECT_EQ(p.limit_state_kind, rel::LimitStateKind::kModel);
   EXPECT_THROW(rel::make_limit_state(p), rel::NotAvailableError);
