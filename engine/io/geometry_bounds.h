@@ -23,6 +23,14 @@ struct Bounds {
 
 // Bounding box of every wall point (invalid when there are none or they are not finite).
 Bounds walls_bounds(const pfem::v1::Model& model);
+// The model's domain: `domain`, or the walls' bounding box grown by half its size.
+Bounds domain_bounds(const pfem::v1::Model& model);
+
+// How two segments ab and cd meet: not at all, or at an end of one of them (a beam standing on
+// a wall), crossing at a point inside both, or overlapping along a piece of positive length.
+enum class SegmentContact { kNone, kTouch, kCross, kOverlap };
+SegmentContact segment_contact(double ax, double ay, double bx, double by, double cx, double cy, double dx,
+                               double dy);
 Bounds polygon_bounds(const pfem::v1::Polygon& polygon);
 double polygon_area(const pfem::v1::Polygon& polygon);  // signed, counter-clockwise positive
 

@@ -185,14 +185,8 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
   pb.unified_fractional_step = a.has_solver() && a.solver() == "unified-fractional-step";
   if (a.has_vtk_every()) pb.vtk_every = a.vtk_every();
 
-  const Bounds wb = walls_bounds(model);
-  if (model.has_domain()) {
-    const auto& d = model.domain();
-    pb.domain = {d.min().x(), d.min().y(), d.max().x(), d.max().y()};
-  } else {
-    const double grow = 0.5 * wb.size();
-    pb.domain = {wb.xmin - grow, wb.ymin - grow, wb.xmax + grow, wb.ymax + grow};
-  }
+  const Bounds domain = domain_bounds(model);
+  pb.domain = {domain.xmin, domain.ymin, domain.xmax, domain.ymax};
 
   // The model with every parameter's value on its targets (the structure is built from it).
   pfem::v1::Model with_values = model;

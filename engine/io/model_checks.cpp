@@ -1,6 +1,7 @@
 #include "engine/io/model_checks.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -246,7 +247,7 @@ void ModelChecker::check_regions() {
     finite(path + ".velocity.x", r.velocity().x());
     finite(path + ".velocity.y", r.velocity().y());
     if (walls.valid() && !walls.contains(b, 1e-9 * (walls.size() + 1.0)))
-      error(path, "lies outside every wall (beyond the walls' bounding box)");
+      error(path, "reaches beyond the walls (their bounding box)");
     const double h = model_.mesh().h();
     if (std::isfinite(h) && h > 0 && (b.xmax - b.xmin < h * 0.999 || b.ymax - b.ymin < h * 0.999))
       error(path, "is smaller than the particle spacing mesh.h");
@@ -290,6 +291,10 @@ void ModelChecker::check_recorders() {
         if (rz) error(path + ".point", "quantity 'rz' needs a structure node (node), not a point");
         finite(path + ".point.x", r.point().x());
         finite(path + ".point.y", r.point().y());
+        const Bounds domain = domain_bounds(model_);
+        if (domain.valid() && std::isfinite(r.point().x()) && std::isfinite(r.point().y()) &&
+            !domain.contains(Bounds{r.point().x(), r.point().y(), r.point().x(), r.point().y()}, 0.0))
+          error(path + ".point", "lies outside the domain");
       } else if (r.has_node()) {
         if (!is_structure_node(r.node())) error(path + ".node", "unknown node '" + r.node() + "'");
       } else if (r.has_element()) {
@@ -440,6 +445,7 @@ void ModelChecker::check_structure() {
   check_materials();
   check_sections();
   check_beams();
+  if (errors_.empty()) check_beam_crossings();
   if (model_.structure().has_rayleigh()) {
     non_negative("structure.rayleigh.a0", model_.structure().rayleigh().a0());
     non_negative("structure.rayleigh.a1", model_.structure().rayleigh().a1());
@@ -594,12 +600,45 @@ void ModelChecker::check_beams() {
     if (b.has_transformation() && b.transformation() != "corotational" && b.transformation() != "linear")
       error(path + ".transformation",
             "unknown transformation '" + b.transformation() + "'; expected corotational or linear");
-    if (b.has_integration_points() &&
-        (b.integration_points() < 1 || b.integration_points() > kMaxIntegrationPoints))
+    if (b.has_integration_points() && elastic)
+      error(path + ".integration_points", "is for displacement-based beams (an elastic beam has none)");
+    else if (b.has_integration_points() &&
+             (b.integration_points() < 1 || b.integration_points() > kMaxIntegrationPoints))
       error(path + ".integration_points", "must be in 1.." + std::to_string(kMaxIntegrationPoints));
     if (b.has_mass() && b.mass() != "lumped" && b.mass() != "consistent")
       error(path + ".mass", "unknown mass '" + b.mass() + "'; expected lumped or consistent");
     positive(path + ".rho", b.rho());
+  }
+}
+
+void ModelChecker::check_beam_crossings() {
+  const auto& st = model_.structure();
+  const auto point = [&](const std::string& node) {
+    const auto& n = st.nodes(names_.nodes.at(node));
+    return std::array<double, 2>{n.x(), n.y()};
+  };
+  const auto report = [&](int i, SegmentContact contact, const std::string& other) {
+    if (contact == SegmentContact::kCross) error(at("structure.beams", i), "crosses " + other);
+    if (contact == SegmentContact::kOverlap) error(at("structure.beams", i), "lies along " + other);
+  };
+  for (int i = 0; i < st.beams_size(); ++i) {
+    const auto a = point(st.beams(i).from_node()), b = point(st.beams(i).to_node());
+    for (int w = 0; w < model_.walls_size(); ++w) {
+      const auto& pts = model_.walls(w).points();
+      const int pieces = pts.size() - 1 + (model_.walls(w).closed() && pts.size() > 2 ? 1 : 0);
+      SegmentContact worst = SegmentContact::kNone;
+      for (int k = 0; k < pieces; ++k) {
+        const auto& p = pts[k];
+        const auto& q = pts[(k + 1) % pts.size()];
+        const auto c = segment_contact(a[0], a[1], b[0], b[1], p.x(), p.y(), q.x(), q.y());
+        if (c == SegmentContact::kCross || c == SegmentContact::kOverlap) worst = c;
+      }
+      report(i, worst, at("walls", w));
+    }
+    for (int j = i + 1; j < st.beams_size(); ++j) {
+      const auto c = point(st.beams(j).from_node()), d = point(st.beams(j).to_node());
+      report(i, segment_contact(a[0], a[1], b[0], b[1], c[0], c[1], d[0], d[1]), at("structure.beams", j));
+    }
   }
 }
 

@@ -75,6 +75,9 @@ class ModelChecker {
   void check_materials();
   void check_sections();
   void check_beams();
+  // Beams may touch walls and each other (a beam standing on the floor) but not cross them or
+  // lie along them: the triangulation takes both as constraints.
+  void check_beam_crossings();
   // Names "<beam>/<k>" resolved against the beams: whether a node exists; the beam of an element (-1: none).
   bool is_structure_node(const std::string& name) const;
   int beam_of_element(const std::string& name) const;

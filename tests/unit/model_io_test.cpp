@@ -98,7 +98,7 @@ TEST(ModelValidation, FluidRegionOutsideEveryWall) {
   auto* r = m.mutable_fluid_regions(0)->mutable_rectangle();
   r->mutable_min()->set_x(1.0), r->mutable_min()->set_y(1.0);
   r->mutable_max()->set_x(1.2), r->mutable_max()->set_y(1.2);
-  expect_single_error(validate_model(m), "fluid_regions[0]", "outside every wall");
+  expect_single_error(validate_model(m), "fluid_regions[0]", "reaches beyond the walls");
 }
 
 // JSON has no NaN literal; the proto3 JSON mapping accepts the strings "NaN", "Infinity" and
@@ -307,7 +307,7 @@ TEST_F(PfemCommand, BadOptionsAndOutputsAreRefusedUpFront) {
 
 // What only building the model finds is reported by validate too (exit 2, one line each).
 TEST_F(PfemCommand, ValidateReportsWhatTheBuildFinds) {
-  const fs::path bad = write("small_domain.json", edited_json("\"mesh\"", "\"domain\": {\"min\": {\"x\": 0.0, \"y\": 0.0}, \"max\": {\"x\": 0.01, \"y\": 0.01}}, \"mesh\""));
+  const fs::path bad = write("small_domain.json", edited_json("\"mesh\"", "\"domain\": {\"min\": {\"x\": 0.0, \"y\": 0.0}, \"max\": {\"x\": 0.15, \"y\": 0.15}}, \"mesh\""));
   const Command c = pfem("validate '" + bad.string() + "'");
   EXPECT_EQ(c.exit_code, 2);
   EXPECT_EQ(c.stderr_lines, (std::vector<std::string>{"domain: does not contain every wall and structure node",

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "engine/io/model_checks.h"
@@ -304,6 +305,7 @@ TEST(StructureBuilderErrors, UnknownKinds) {
   expect_build_error(m, "structure.materials[0]", "needs a kind: elastic or bilinear");
   m = cantilever(true);  // an elastic beam on fibers of a plastic material
   m.mutable_structure()->mutable_beams(0)->set_element_type("elastic");
+  m.mutable_structure()->mutable_beams(0)->clear_integration_points();
   expect_build_error(m, "structure.beams[0].section",
                      "an elastic beam needs an elastic section or a fiber_rectangle of an elastic material; "
                      "section 'square' uses material 'steel', which is not elastic");
@@ -423,6 +425,40 @@ TEST(SloshingBeam, ElementsLongerThanOneAndAHalfSpacingsAreRefused) {
                       "beam's nodes; use at least 27");
   m.mutable_structure()->mutable_beams(0)->set_elements(27);  // 1.48 h
   EXPECT_TRUE(validate_model(m).empty()) << describe(validate_model(m));
+}
+
+// A beam may stand on a wall (its base on the floor) but not cross a wall or another beam, nor
+// lie along a wall; an elastic beam has no integration points; a recorder point must lie in the
+// domain.
+TEST(SloshingBeam, BeamsCrossingWallsOrBeamsAndStrayOptionsAreRefused) {
+  const auto with_beam = [](double x0, double y0, double x1, double y1) {
+    auto m = sloshing();  // tank walls x = 0 and y = 0 up to x = 0.1; beam x = 0.1 from y = 0 to 0.1
+    auto* st = m.mutable_structure();
+    for (const auto& [name, x, y] : {std::tuple{"a", x0, y0}, std::tuple{"b", x1, y1}}) {
+      auto* n = st->add_nodes();
+      n->set_name(name), n->set_x(x), n->set_y(y);
+    }
+    auto* b = st->add_beams();
+    *b = st->beams(0);
+    b->set_name("second"), b->set_from_node("a"), b->set_to_node("b");
+    return m;
+  };
+  expect_single_error(validate_model(with_beam(0.05, 0.05, 0.15, 0.05)), "structure.beams[0]",
+                      "crosses structure.beams[1]");
+  expect_single_error(validate_model(with_beam(-0.02, 0.05, 0.05, 0.05)), "structure.beams[1]", "crosses walls[0]");
+  expect_single_error(validate_model(with_beam(0.02, 0.0, 0.06, 0.0)), "structure.beams[1]", "lies along walls[0]");
+  EXPECT_TRUE(validate_model(with_beam(0.05, 0.0, 0.05, 0.04)).empty());  // standing on the floor
+  EXPECT_TRUE(validate_model(with_beam(0.1, 0.1, 0.14, 0.1)).empty());    // on the first beam's tip
+
+  auto m = sloshing();
+  m.mutable_structure()->mutable_beams(0)->set_integration_points(3);
+  expect_single_error(validate_model(m), "structure.beams[0].integration_points",
+                      "is for displacement-based beams (an elastic beam has none)");
+  m = sloshing();
+  auto* r = m.add_recorders();
+  r->set_name("far"), r->set_quantity("p");
+  r->mutable_point()->set_x(0.5), r->mutable_point()->set_y(0.0);
+  expect_single_error(validate_model(m), "recorders[2].point", "lies outside the domain");
 }
 
 TEST(SloshingBeam, RecorderNodesResolveAgainstStructureNames) {
