@@ -84,6 +84,11 @@ grpc::Status GradientService::ValidateModel(grpc::ServerContext* context,
     response->set_valid(response->errors().empty());
     response->set_estimated_particles(estimate_particles(request->model()));
     response->set_steps(count_steps(request->model(), std::nullopt, std::nullopt));
+    try {
+      check_run_limits(request->model(), std::nullopt, std::nullopt, limits_);
+    } catch (const ServiceError& e) {
+      response->set_over_limit(e.what());  // SubmitJob would answer RESOURCE_EXHAUSTED
+    }
     return grpc::Status::OK;
   });
 }

@@ -136,6 +136,10 @@ class Ctl {
     }
     std::cout << "valid: about " << response.estimated_particles() << " fluid particles, "
               << response.steps() << " steps\n";
+    if (!response.over_limit().empty()) {
+      std::cerr << "but this server would refuse to run it: " << response.over_limit() << '\n';
+      return 1;
+    }
     return 0;
   }
 

@@ -169,6 +169,18 @@ TEST_F(ServiceErrors, LimitsAreResourceExhaustedNamingTheLimit) {
   auto status = submit(request);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_TRUE(mentions(status, "max-particles limit exceeded: the model has about 2000"));
+  // ValidateModel finds the model valid and says which limit it exceeds here.
+  for (const bool over : {true, false}) {
+    grpc::ClientContext c;
+    pfem::v1::ValidateModelRequest validate;
+    *validate.mutable_model() = over ? request.model() : tiny_model();
+    pfem::v1::ValidateModelResponse answer;
+    ASSERT_TRUE(stub_->ValidateModel(&c, validate, &answer).ok());
+    EXPECT_TRUE(answer.valid());
+    EXPECT_EQ(answer.over_limit().rfind("max-particles limit exceeded: the model has about 2000", 0),
+              over ? 0u : std::string::npos)
+        << answer.over_limit();
+  }
 
   pfem::v1::EvaluateRequest eval;
   *eval.mutable_model() = request.model();
