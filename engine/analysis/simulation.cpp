@@ -1,6 +1,8 @@
 #include "engine/analysis/simulation.h"
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -58,7 +60,8 @@ int advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings sett
     step.advance(mesh, settings, nodes, cancel);
     add_work(sum, step.last_report());
     return step.last_report().iterations;
-  } catch (const StepFailure&) {
+  } catch (const StepFailure& e) {
+    if (std::getenv("PFEM_DEBUG_HALVING")) std::fprintf(stderr, "halve depth %d dt %g: %s\n", depth, settings.dt, e.what());
     add_work(sum, step.last_report());
     if (depth == kMaxHalvings) throw;
   }

@@ -20,6 +20,7 @@ using Clock = std::chrono::steady_clock;
 // finite-difference runs took differently.
 constexpr double kRoundoff = 1024 * std::numeric_limits<double>::epsilon();
 constexpr double kStructureTangentChange = 1e-3;  // see update_structure_tangent
+constexpr int kStallWindow = 10;  // iterations in which the residual must at least halve
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -549,6 +550,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   }
 
   double previous_residual = 0.0;
+  std::vector<double> best;  // the smallest residual up to each iteration
   const double p_floor = s.fluid.rho * std::hypot(s.gx, s.gy) * 1e-3 + 1e-12;
   for (int it = 0;; ++it) {
     if (cancel && cancel->load(std::memory_order_relaxed)) throw StepCancelled();
@@ -584,10 +586,15 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
       }
       break;
     }
-    if (it == s.max_iterations) {
-      char msg[96];
-      std::snprintf(msg, sizeof msg, "Newton did not converge in %d iterations (relative residual %.3e)",
-                    it, report.residual);
+    best.push_back(it == 0 ? report.residual : std::min(best.back(), report.residual));
+    // Give up when the residual has not even halved in kStallWindow iterations (diverging or
+    // cycling: a splash the step is too long for): a halved step is cheaper than the rest of
+    // max_iterations, each with a factorisation.
+    const bool hopeless = it >= 2 * kStallWindow && best[it] > 0.5 * best[it - kStallWindow];
+    if (it == s.max_iterations || hopeless) {
+      char msg[128];
+      std::snprintf(msg, sizeof msg, "Newton did not converge in %d iterations (relative residual %.3e%s)", it,
+                    report.residual, hopeless ? ", not halved in the last iterations" : "");
       throw StepFailure(msg);
     }
 

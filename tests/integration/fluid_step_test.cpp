@@ -120,5 +120,25 @@ TEST(FluidStep, AParticleThatWouldCrossAWallOrBeamIsTakenOut) {
   }
 }
 
+// A step far too long for the flow (a 0.2 s step of a collapsing water column): Newton does not
+// halve its residual within ten iterations and the step gives up there, long before
+// max_iterations, saying so (the caller then halves the step).
+TEST(FluidStep, NewtonGivesUpWhenTheResidualStopsFalling) {
+  const Problem pb = build_problem(example("dam-break.json"));
+  NodeState nodes = pb.nodes;
+  StepSettings s;
+  s.dt = 0.2, s.fluid = pb.fluid, s.thickness = pb.thickness, s.gx = pb.gx, s.gy = pb.gy;
+  s.max_iterations = 200;
+  UnifiedStep step;
+  const auto mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, {pb.h, pb.alpha, pb.gx, pb.gy});
+  try {
+    step.advance(mesh, s, nodes);
+    ADD_FAILURE() << "converged in " << step.last_report().iterations << " iterations";
+  } catch (const StepFailure& e) {
+    EXPECT_NE(std::string(e.what()).find("not halved in the last iterations"), std::string::npos) << e.what();
+    EXPECT_LT(step.last_report().iterations, 100);
+  }
+}
+
 }  // namespace
 }  // namespace pfem
