@@ -86,10 +86,13 @@ void finite_differences(const pfem::v1::Model& model, const Problem& base, const
     const auto plus = problem_if_valid(model, base, p->name, p->value + step);
     const auto minus = problem_if_valid(model, base, p->name, p->value - step);
     if (!plus && !minus) problem_with(model, base, p->name, p->value + step);  // throws: why
-    SimulationOutput a, b;
-    a.responses = b.responses = result.responses;
-    if (plus) a = simulate(*plus, quiet);
-    if (minus) b = simulate(*minus, quiet);
+    const auto side = [&](const std::optional<Problem>& pb) {  // the unperturbed run where invalid
+      SimulationOutput out;
+      if (pb) out = simulate(*pb, quiet);
+      else out.responses = result.responses;
+      return out;
+    };
+    const SimulationOutput a = side(plus), b = side(minus);
     const double width = (plus ? step : 0.0) + (minus ? step : 0.0);
     for (const auto* r : {&a, &b}) {
       if (r->summary.status != RunStatus::kCompleted || r->responses.rows.size() != sens.time.size()) {
@@ -121,9 +124,8 @@ RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
   if (options.t_end) problem.t_end = *options.t_end;
   if (options.dt) problem.dt = *options.dt;
   if (problem.dt > problem.t_end) throw ModelError("dt", "must not exceed t_end");
-  if (const long steps = count_steps(problem.t_end, problem.dt); steps > kMaxSteps)
-    throw ModelError("t_end", "is " + std::to_string(steps) + " steps of dt, more than the " +
-                                  std::to_string(kMaxSteps) + " a run may take");
+  if (const std::string why = too_many_steps(problem.t_end, problem.dt, "dt"); !why.empty())
+    throw ModelError("t_end", why);
 
   std::optional<Problem> with_seeds;  // DDM: the problem with the parameters' seeds
   if (options.sensitivity == SensitivityMethod::kDdm) {

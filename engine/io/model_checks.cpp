@@ -261,9 +261,8 @@ void ModelChecker::check_analysis() {
   positive("analysis.t_end", a.t_end());
   if (std::isfinite(a.dt()) && std::isfinite(a.t_end()) && a.dt() > a.t_end())
     error("analysis.dt", "must not exceed analysis.t_end");
-  if (const long steps = count_steps(a.t_end(), a.dt()); steps > kMaxSteps)
-    error("analysis.t_end", "is " + std::to_string(steps) + " steps of analysis.dt, more than the " +
-                                std::to_string(kMaxSteps) + " a run may take");
+  if (const std::string why = too_many_steps(a.t_end(), a.dt(), "analysis.dt"); !why.empty())
+    error("analysis.t_end", why);
   if (a.has_newton_tolerance()) {
     const double tol = a.newton_tolerance();
     if (!std::isfinite(tol) || tol <= 0 || tol >= 1) error("analysis.newton_tolerance", "must be in (0, 1)");

@@ -32,6 +32,13 @@ long count_steps(double t_end, double dt) {
   return static_cast<long>(std::ceil(n * (1.0 - 1e-9)));
 }
 
+std::string too_many_steps(double t_end, double dt, const std::string& dt_field) {
+  const long steps = count_steps(t_end, dt);
+  if (steps <= kMaxSteps) return "";
+  return "is " + std::to_string(steps) + " steps of " + dt_field + ", more than the " + std::to_string(kMaxSteps) +
+         " a run may take";
+}
+
 long count_steps(const pfem::v1::Model& model, std::optional<double> t_end, std::optional<double> dt) {
   return count_steps(t_end.value_or(model.analysis().t_end()), dt.value_or(model.analysis().dt()));
 }

@@ -2,6 +2,7 @@
 // How big a run is, estimated from the model without building it: shared by validation (the
 // engine's own caps) and the server's resource limits.
 #include <optional>
+#include <string>
 
 #include "pfem/v1/model.pb.h"
 
@@ -23,5 +24,8 @@ long estimate_particles(const pfem::v1::Model& model);
 long count_steps(const pfem::v1::Model& model, std::optional<double> t_end = std::nullopt,
                  std::optional<double> dt = std::nullopt);
 long count_steps(double t_end, double dt);
+// "" when a run of t_end in steps of dt (named dt_field in the message) stays within kMaxSteps;
+// otherwise why not.
+std::string too_many_steps(double t_end, double dt, const std::string& dt_field);
 
 }  // namespace pfem
