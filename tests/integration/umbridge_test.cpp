@@ -10,6 +10,8 @@
 
 #include "tests/integration/service_test_support.h"
 
+#include "server/functional.h"
+
 namespace {
 
 using namespace pfem::testing;
@@ -167,6 +169,17 @@ TEST_F(UmbridgeServerTest, EvaluateIsBitIdenticalToTheGrpcEvaluate) {
        {"front_x", pfem::v1::Functional::KIND_FINAL}},
       pfem::v1::SENSITIVITY_METHOD_NONE);
   for (int i = 0; i < 3; ++i) EXPECT_EQ(output[0][i], expected.values(i).value()) << i;
+  // And `pfem run` (pfem::run) on the model with those values, bit for bit.
+  auto model = tiny_model();
+  model.mutable_parameters(0)->set_value(1005.0);
+  model.mutable_parameters(1)->set_value(2.0e9);
+  const auto run = pfem::run(model, {});
+  const std::vector<pfem::FunctionalSpec> specs = {{"bottom_p", pfem::FunctionalKind::kMax},
+                                                   {"fluid_area", pfem::FunctionalKind::kMin},
+                                                   {"front_x", pfem::FunctionalKind::kFinal}};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(output[0][i], pfem::evaluate_functional(run.responses, {}, {}, specs[i]).value) << i;
+  }
   // Hydrostatic: about rho g depth at the bottom (0.04 m of water).
   EXPECT_NEAR(output[0][0], 1005.0 * 9.81 * 0.04, 0.05 * 1005.0 * 9.81 * 0.04);
 }
@@ -254,6 +267,25 @@ TEST_F(UmbridgeServerTest, DerivativesOfTheBeamModelMatchDdmAndFiniteDifferences
                     {{"tip_ux", pfem::v1::Functional::KIND_MAX_ABS},
                      {"base_p", pfem::v1::Functional::KIND_FINAL}},
                     {"tip_ux:max_abs", "base_p:final"});
+}
+
+TEST_F(UmbridgeServerTest, ConcurrentCallsAgreeWithSequentialOnes) {
+  // Four clients at once on two workers, each at its own point: the same numbers as one by one.
+  const auto body = [](int i) {
+    return json{{"name", "tiny"}, {"input", {{990.0 + 5.0 * i, 2.15e9}}},
+                {"config", {{"outputs", {"bottom_p:max", "fluid_area:final"}}}}};
+  };
+  std::vector<Reply> parallel(4);
+  std::vector<std::thread> threads;
+  for (int i = 0; i < 4; ++i) {
+    threads.emplace_back([&, i] { parallel[i] = Client(server->umbridge_address()).post("/Evaluate", body(i)); });
+  }
+  for (auto& t : threads) t.join();
+  start("");  // a fresh server: nothing cached
+  for (int i = 0; i < 4; ++i) {
+    ASSERT_EQ(parallel[i].status, 200) << parallel[i].body.dump();
+    EXPECT_EQ(parallel[i].body, client->post("/Evaluate", body(i)).body) << i;
+  }
 }
 
 TEST_F(UmbridgeServerTest, ConfigShortensTheRun) {
