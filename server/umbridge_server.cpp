@@ -6,6 +6,7 @@
 #include <functional>
 #include <stdexcept>
 
+#include "server/peer_socket.h"
 #include "server/status.h"
 
 namespace pfem::server {
@@ -138,7 +139,8 @@ void UmbridgeServer::stop() {
 void UmbridgeServer::add_routes() {
   // Runs one call: draining and auth checks, the body parsed as a JSON object, errors
   // converted once into the protocol's format.
-  using Body = std::function<json(const json& body)>;
+  // A run stops (CANCELLED) when its client closes the connection.
+  using Body = std::function<json(const json& body, const Evaluator::StopFunction& should_stop)>;
   const auto route = [this](bool post, const char* path, Body body) {
     const auto handler = [this, body, post](const httplib::Request& req, httplib::Response& res) {
       if (draining_) return send_error(res, {503, "Unavailable", "server is shutting down"});
@@ -156,7 +158,12 @@ void UmbridgeServer::add_routes() {
           }
           if (!request.is_object()) throw invalid("the request body must be a JSON object");
         }
-        send(res, 200, body(request));
+        int fd = -2;  // the client's socket, looked up when a run first polls
+        const auto client_gone = [&] {
+          if (fd == -2) fd = find_peer_socket(port_, req.remote_addr, req.remote_port);
+          return fd >= 0 && peer_closed(fd) ? grpc::StatusCode::CANCELLED : grpc::StatusCode::OK;
+        };
+        send(res, 200, body(request, client_gone));
       } catch (...) {
         send_error(res, current_error());
       }
@@ -188,17 +195,17 @@ void UmbridgeServer::add_routes() {
     }
     return call;
   };
-  // Runs the call (through the shared Evaluator and cache); no client cancellation here:
-  // cpp-httplib 0.11 does not tell a handler that its client has gone.
-  const auto evaluate = [this](const Call& call, bool with_gradient) {
+  // Runs the call through the shared Evaluator and cache.
+  const auto evaluate = [this](const Call& call, bool with_gradient,
+                               const Evaluator::StopFunction& should_stop) {
     pfem::v1::EvaluateResponse response;
     evaluator_.evaluate(evaluate_request(call.model, call.config, call.input, with_gradient),
-                        [] { return grpc::StatusCode::OK; }, &response);
+                        should_stop, &response);
     return response;
   };
   // J[i][k] = d output_i / d input_k, with the inputs in config.params order.
-  const auto jacobian = [evaluate](const Call& call) {
-    const auto response = evaluate(call, true);
+  const auto jacobian = [evaluate](const Call& call, const Evaluator::StopFunction& should_stop) {
+    const auto response = evaluate(call, true, should_stop);
     std::vector<std::vector<double>> j;
     for (const auto& v : response.values()) {
       std::vector<double> row;
@@ -211,54 +218,55 @@ void UmbridgeServer::add_routes() {
     return j;
   };
 
-  route(false, "/Info", [this](const json&) {
+  route(false, "/Info", [this](const json&, const auto&) {
     return json{{"protocolVersion", 1.0}, {"models", models_.names()}};
   });
-  route(true, "/ModelInfo", [resolve](const json& body) {
+  route(true, "/ModelInfo", [resolve](const json& body, const auto&) {
     resolve(body, false);
     return json{{"support",
                  {{"Evaluate", true}, {"Gradient", true}, {"ApplyJacobian", true},
                   {"ApplyHessian", false}}}};
   });
-  route(true, "/InputSizes", [resolve](const json& body) {
+  route(true, "/InputSizes", [resolve](const json& body, const auto&) {
     return json{{"inputSizes", json::array({resolve(body, false).config.params.size()})}};
   });
-  route(true, "/OutputSizes", [resolve](const json& body) {
+  route(true, "/OutputSizes", [resolve](const json& body, const auto&) {
     return json{{"outputSizes", json::array({resolve(body, false).config.outputs.size()})}};
   });
-  route(true, "/Evaluate", [resolve, evaluate](const json& body) {
-    const auto response = evaluate(resolve(body, true), false);
+  route(true, "/Evaluate", [resolve, evaluate](const json& body, const auto& should_stop) {
+    const auto response = evaluate(resolve(body, true), false, should_stop);
     std::vector<double> output;
     for (const auto& v : response.values()) output.push_back(v.value());
     return json{{"output", json::array({json(output)})}};
   });
   // Gradient and ApplyJacobian: J at the input and the request's vector `key` (sens, of the
   // output's size, or vec, of the input's).
-  const auto derivative_call = [resolve, jacobian](const json& body, const char* key) {
+  const auto derivative_call = [resolve, jacobian](const json& body, const char* key,
+                                                   const Evaluator::StopFunction& should_stop) {
     const Call call = resolve(body, true);
     check_index(body, "outWrt");
     check_index(body, "inWrt");
     const auto v = field<std::vector<double>>(body, key, "a list of numbers");
     check_vector(v, std::string(key) == "sens" ? call.config.outputs.size() : call.config.params.size(), key);
-    return std::pair{jacobian(call), v};
+    return std::pair{jacobian(call, should_stop), v};
   };
-  route(true, "/Gradient", [derivative_call](const json& body) {
-    const auto [j, sens] = derivative_call(body, "sens");
+  route(true, "/Gradient", [derivative_call](const json& body, const auto& should_stop) {
+    const auto [j, sens] = derivative_call(body, "sens", should_stop);
     std::vector<double> g(j.empty() ? 0 : j[0].size(), 0.0);
     for (std::size_t i = 0; i < j.size(); ++i) {
       for (std::size_t k = 0; k < g.size(); ++k) g[k] += sens[i] * j[i][k];
     }
     return json{{"output", g}};
   });
-  route(true, "/ApplyJacobian", [derivative_call](const json& body) {
-    const auto [j, vec] = derivative_call(body, "vec");
+  route(true, "/ApplyJacobian", [derivative_call](const json& body, const auto& should_stop) {
+    const auto [j, vec] = derivative_call(body, "vec", should_stop);
     std::vector<double> jv(j.size(), 0.0);
     for (std::size_t i = 0; i < j.size(); ++i) {
       for (std::size_t k = 0; k < vec.size(); ++k) jv[i] += j[i][k] * vec[k];
     }
     return json{{"output", jv}};
   });
-  route(true, "/ApplyHessian", [resolve](const json& body) -> json {
+  route(true, "/ApplyHessian", [resolve](const json& body, const auto&) -> json {
     resolve(body, false);
     throw ProtocolError{400, "UnsupportedFeature",
                         "ApplyHessian: the engine computes first derivatives only (DDM)"};

@@ -16,6 +16,8 @@
 // (with --token-file: "Authorization: Bearer <token>"), 503 Unavailable while draining, 500
 // otherwise (EvaluationFailed for a simulation failure, Cancelled, InternalError).
 //
+// A run whose client closes the connection is cancelled (server/peer_socket.h).
+//
 // Thread-safety: the HTTP threads call the evaluator concurrently; runs go on the job
 // manager's workers, so at most --workers run at once.
 #include <atomic>

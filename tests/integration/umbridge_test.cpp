@@ -76,7 +76,7 @@ struct UmbridgeServerTest : ::testing::Test {
 
   void SetUp() override { start({}); }
 
-  void start(const std::string& token) {
+  void start(const std::string& token, pfem::server::JobManager::RunFunction run = {}) {
     const auto write = [&](const char* name, const char* text) {
       const auto file = dir.path / name;
       std::ofstream(file) << text;
@@ -88,7 +88,7 @@ struct UmbridgeServerTest : ::testing::Test {
                          {"cantilever", write("cantilever.json", kTinyCantileverJson)}};
     if (!token.empty()) o.token_file = write("tokens", token.c_str());
     server.reset();
-    server = std::make_unique<pfem::server::Server>(o);
+    server = std::make_unique<pfem::server::Server>(o, std::move(run));
     client = std::make_unique<Client>(server->umbridge_address(), token);
   }
 
@@ -286,6 +286,28 @@ TEST_F(UmbridgeServerTest, ConcurrentCallsAgreeWithSequentialOnes) {
     ASSERT_EQ(parallel[i].status, 200) << parallel[i].body.dump();
     EXPECT_EQ(parallel[i].body, client->post("/Evaluate", body(i)).body) << i;
   }
+}
+
+TEST_F(UmbridgeServerTest, AClientThatLeavesCancelsItsRun) {
+  // A fake engine of 2000 steps of 5 ms (10 s) that tells how its run ended.
+  FakeEngine fake;
+  fake.steps = 2000;
+  fake.step_seconds = 0.005;
+  auto ended = std::make_shared<std::atomic<int>>(-1);  // the RunStatus once it has ended
+  start("", [engine = fake.function(), ended](const pfem::v1::Model& m, const pfem::RunOptions& o) {
+    auto r = engine(m, o);
+    *ended = static_cast<int>(r.summary.status);
+    return r;
+  });
+  {
+    httplib::Client impatient("http://" + server->umbridge_address());
+    impatient.set_read_timeout(0, 300000);  // gives up after 0.3 s and hangs up
+    EXPECT_FALSE(impatient.Post("/Evaluate", json{{"name", "tiny"}, {"input", {{1000.0, 2.15e9}}}}.dump(),
+                                "application/json"));
+  }
+  for (int i = 0; i < 3000 && *ended < 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(*ended, static_cast<int>(pfem::RunStatus::kCancelled));
+  EXPECT_EQ(server->cache().size(), 0u);
 }
 
 TEST_F(UmbridgeServerTest, ConfigShortensTheRun) {
