@@ -16,8 +16,8 @@ std::pair<std::string, int> endpoint(const sockaddr_storage& a, socklen_t size) 
   char host[NI_MAXHOST];
   char port[NI_MAXSERV];
   if ((a.ss_family != AF_INET && a.ss_family != AF_INET6) ||
-      getnameinfo(reinterpret_cast<const sockaddr*>(&a), size, host, sizeof host, port,
-                  sizeof port, NI_NUMERICHOST | NI_NUMERICSERV) != 0) {
+      getnameinfo(reinterpret_cast<const sockaddr*>(&a), size, host, sizeof host, port, sizeof port,
+                  NI_NUMERICHOST | NI_NUMERICSERV) != 0) {
     return {"", -1};
   }
   return {host, std::atoi(port)};

@@ -25,8 +25,8 @@ std::string parse_output(const std::string& text, pfem::v1::Functional* f) {
   std::string upper = "KIND_" + kind;
   std::transform(upper.begin(), upper.end(), upper.begin(),
                  [](unsigned char c) { return std::toupper(c); });
-  const bool lower = std::none_of(kind.begin(), kind.end(),
-                                  [](unsigned char c) { return std::isupper(c); });
+  const bool lower =
+      std::none_of(kind.begin(), kind.end(), [](unsigned char c) { return std::isupper(c); });
   pfem::v1::Functional::Kind k{};
   if (!lower || !pfem::v1::Functional::Kind_Parse(upper, &k) ||
       k == pfem::v1::Functional::KIND_UNSPECIFIED) {
@@ -77,8 +77,8 @@ UmbridgeConfig read_config(const json& config, const pfem::v1::Model& model) {
   for (const auto& [key, value] : config.items()) {
     if (key != "params" && key != "outputs" && key != "t_end" && key != "dt" &&
         key != "sensitivity") {
-      errors.push_back({"config." + key,
-                        "unknown option (params, outputs, t_end, dt or sensitivity)"});
+      errors.push_back(
+          {"config." + key, "unknown option (params, outputs, t_end, dt or sensitivity)"});
     }
   }
   if (const auto it = config.find("params"); it != config.end()) {
@@ -86,9 +86,9 @@ UmbridgeConfig read_config(const json& config, const pfem::v1::Model& model) {
     for (std::size_t i = 0; it->is_array() && i < it->size(); ++i) {
       const std::string path = "config.params[" + std::to_string(i) + "]";
       const auto& name = (*it)[i];
-      const bool known = name.is_string() &&
-                         std::any_of(model.parameters().begin(), model.parameters().end(),
-                                     [&](const auto& p) { return p.name() == name; });
+      const bool known =
+          name.is_string() && std::any_of(model.parameters().begin(), model.parameters().end(),
+                                          [&](const auto& p) { return p.name() == name; });
       if (!known) {
         errors.push_back({path, "no parameter " + name.dump() + " in the model"});
       } else if (std::find(out.params.begin(), out.params.end(), name) != out.params.end()) {

@@ -14,9 +14,8 @@
 //
 // Thread-safety: UmbridgeModels is immutable after construction except for the store, which
 // is thread-safe; every method may be called from any thread.
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <string>

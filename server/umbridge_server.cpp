@@ -35,15 +35,19 @@ ProtocolError current_error() {
       case grpc::StatusCode::INVALID_ARGUMENT:
       case grpc::StatusCode::RESOURCE_EXHAUSTED:  // over one of the server's limits
         return invalid(status.error_message());
-      case grpc::StatusCode::NOT_FOUND: return {400, "ModelNotFound", status.error_message()};
-      case grpc::StatusCode::UNAUTHENTICATED: return {401, "Unauthorized", status.error_message()};
-      case grpc::StatusCode::UNAVAILABLE: return {503, "Unavailable", status.error_message()};
+      case grpc::StatusCode::NOT_FOUND:
+        return {400, "ModelNotFound", status.error_message()};
+      case grpc::StatusCode::UNAUTHENTICATED:
+        return {401, "Unauthorized", status.error_message()};
+      case grpc::StatusCode::UNAVAILABLE:
+        return {503, "Unavailable", status.error_message()};
       case grpc::StatusCode::FAILED_PRECONDITION:
         return {500, "EvaluationFailed", status.error_message()};
       case grpc::StatusCode::CANCELLED:
       case grpc::StatusCode::DEADLINE_EXCEEDED:
         return {500, "Cancelled", status.error_message()};
-      default: return {500, "InternalError", status.error_message()};
+      default:
+        return {500, "InternalError", status.error_message()};
     }
   }
 }
@@ -89,8 +93,13 @@ struct Call {
 
 // The index field (outWrt, inWrt) of a model with one input and one output vector.
 void check_index(const json& body, const char* key) {
-  const int i = field<int>(body, key, "an integer");
-  if (i != 0) throw invalid(std::string(key) + ": must be 0 (the model has one vector), not " + std::to_string(i));
+  const auto it = body.find(key);
+  if (it == body.end() || !it->is_number_integer()) {
+    throw invalid(std::string(key) + ": required (an integer)");
+  }
+  if (*it != 0) {
+    throw invalid(std::string(key) + ": must be 0 (the model has one vector), not " + it->dump());
+  }
 }
 
 }  // namespace
@@ -98,7 +107,10 @@ void check_index(const json& body, const char* key) {
 UmbridgeServer::UmbridgeServer(const std::string& listen, const Evaluator& evaluator,
                                const UmbridgeModels& models, const TokenAuth& auth, int threads,
                                std::size_t max_body_bytes)
-    : evaluator_(evaluator), models_(models), auth_(auth), http_(std::make_unique<httplib::Server>()) {
+    : evaluator_(evaluator),
+      models_(models),
+      auth_(auth),
+      http_(std::make_unique<httplib::Server>()) {
   const auto colon = listen.rfind(':');
   host_ = listen.substr(0, colon);
   int port = -1;
@@ -123,7 +135,8 @@ UmbridgeServer::UmbridgeServer(const std::string& listen, const Evaluator& evalu
     }
   });
   add_routes();
-  port_ = port == 0 ? http_->bind_to_any_port(host_) : (http_->bind_to_port(host_, port) ? port : -1);
+  port_ =
+      port == 0 ? http_->bind_to_any_port(host_) : (http_->bind_to_port(host_, port) ? port : -1);
   if (port_ <= 0) throw std::runtime_error("--umbridge-listen: cannot listen on " + listen);
   thread_ = std::thread([this] { http_->listen_after_bind(); });
 }
@@ -169,8 +182,10 @@ void UmbridgeServer::add_routes() {
       }
       --in_flight_;
     };
-    if (post) http_->Post(path, handler);
-    else http_->Get(path, handler);
+    if (post)
+      http_->Post(path, handler);
+    else
+      http_->Get(path, handler);
   };
 
   // The model named in the body and its config; with_input: and its checked input vector.
@@ -184,8 +199,8 @@ void UmbridgeServer::add_routes() {
     call.config = read_config(body.value("config", json::object()), *model);
     call.model = std::move(*model);
     if (with_input) {
-      const auto input = field<std::vector<std::vector<double>>>(
-          body, "input", "a list of one list of numbers");
+      const auto input =
+          field<std::vector<std::vector<double>>>(body, "input", "a list of one list of numbers");
       if (input.size() != 1) {
         throw invalid("input: has " + std::to_string(input.size()) +
                       " vectors, the model has one input vector");
@@ -224,7 +239,9 @@ void UmbridgeServer::add_routes() {
   route(true, "/ModelInfo", [resolve](const json& body, const auto&) {
     resolve(body, false);
     return json{{"support",
-                 {{"Evaluate", true}, {"Gradient", true}, {"ApplyJacobian", true},
+                 {{"Evaluate", true},
+                  {"Gradient", true},
+                  {"ApplyJacobian", true},
                   {"ApplyHessian", false}}}};
   });
   route(true, "/InputSizes", [resolve](const json& body, const auto&) {
@@ -244,10 +261,15 @@ void UmbridgeServer::add_routes() {
   const auto derivative_call = [resolve, jacobian](const json& body, const char* key,
                                                    const Evaluator::StopFunction& should_stop) {
     const Call call = resolve(body, true);
+    if (call.config.params.empty()) {
+      throw invalid("input[0]: empty, so there is nothing to differentiate (config.params)");
+    }
     check_index(body, "outWrt");
     check_index(body, "inWrt");
     const auto v = field<std::vector<double>>(body, key, "a list of numbers");
-    check_vector(v, std::string(key) == "sens" ? call.config.outputs.size() : call.config.params.size(), key);
+    check_vector(
+        v, std::string(key) == "sens" ? call.config.outputs.size() : call.config.params.size(),
+        key);
     return std::pair{jacobian(call, should_stop), v};
   };
   route(true, "/Gradient", [derivative_call](const json& body, const auto& should_stop) {

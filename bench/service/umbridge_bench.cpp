@@ -63,8 +63,9 @@ int main(int argc, char** argv) {
     const auto colon = functional.find(':');
     if (colon == std::string::npos) throw std::invalid_argument("--functional: must be REC:KIND");
 
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("pfem_bench_umbridge_" + std::to_string(Clock::now().time_since_epoch().count()));
+    const auto dir =
+        std::filesystem::temp_directory_path() /
+        ("pfem_bench_umbridge_" + std::to_string(Clock::now().time_since_epoch().count()));
     pfem::server::ServerOptions o;
     o.listen = "127.0.0.1:0";
     o.data_dir = dir;
@@ -75,9 +76,10 @@ int main(int argc, char** argv) {
     const auto model = pfem::read_model_file(model_file);
 
     // UM-Bridge: Evaluate at the model's own values (an empty input vector: no parameters).
-    const json body = {{"name", "model"},
-                       {"input", json::array({json::array()})},
-                       {"config", {{"params", json::array()}, {"outputs", {functional}}, {"t_end", t_end}}}};
+    const json body = {
+        {"name", "model"},
+        {"input", json::array({json::array()})},
+        {"config", {{"params", json::array()}, {"outputs", {functional}}, {"t_end", t_end}}}};
     const std::string text = body.dump();
     httplib::Client http("http://" + server.umbridge_address());
     http.set_read_timeout(3600);
@@ -97,7 +99,8 @@ int main(int argc, char** argv) {
     pfem::v1::Functional::Kind kind{};
     std::string upper = "KIND_" + functional.substr(colon + 1);
     std::transform(upper.begin(), upper.end(), upper.begin(), ::toupper);
-    if (!pfem::v1::Functional::Kind_Parse(upper, &kind)) throw std::invalid_argument("--functional: unknown kind");
+    if (!pfem::v1::Functional::Kind_Parse(upper, &kind))
+      throw std::invalid_argument("--functional: unknown kind");
     f->set_kind(kind);
     request.set_t_end(t_end);
     request.set_sensitivity(pfem::v1::SENSITIVITY_METHOD_NONE);
@@ -122,10 +125,14 @@ int main(int argc, char** argv) {
                 model_file.filename().c_str(), t_end, functional.c_str(), calls);
     std::printf("  first (uncached) UM-Bridge Evaluate: %.3f s\n", first[0]);
     std::printf("  %-24s %10s %10s %10s\n", "cached call", "mean ms", "p50 ms", "p99 ms");
-    std::printf("  %-24s %10.3f %10.3f %10.3f\n", "gRPC Evaluate", 1e3 * grpc.mean, 1e3 * grpc.p50, 1e3 * grpc.p99);
-    std::printf("  %-24s %10.3f %10.3f %10.3f\n", "UM-Bridge /Evaluate", 1e3 * um.mean, 1e3 * um.p50, 1e3 * um.p99);
-    std::printf("  %-24s %10.3f %10.3f\n", "UM-Bridge - gRPC", 1e3 * (um.mean - grpc.mean), 1e3 * (um.p50 - grpc.p50));
-    std::printf("  same value both ways: %s (%.17g)\n", value_http == value_grpc ? "yes" : "NO", value_http);
+    std::printf("  %-24s %10.3f %10.3f %10.3f\n", "gRPC Evaluate", 1e3 * grpc.mean, 1e3 * grpc.p50,
+                1e3 * grpc.p99);
+    std::printf("  %-24s %10.3f %10.3f %10.3f\n", "UM-Bridge /Evaluate", 1e3 * um.mean,
+                1e3 * um.p50, 1e3 * um.p99);
+    std::printf("  %-24s %10.3f %10.3f\n", "UM-Bridge - gRPC", 1e3 * (um.mean - grpc.mean),
+                1e3 * (um.p50 - grpc.p50));
+    std::printf("  same value both ways: %s (%.17g)\n", value_http == value_grpc ? "yes" : "NO",
+                value_http);
     server.shutdown();
     std::filesystem::remove_all(dir);
     return 0;

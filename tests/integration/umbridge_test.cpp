@@ -8,9 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tests/integration/service_test_support.h"
-
 #include "server/functional.h"
+#include "tests/integration/service_test_support.h"
 
 namespace {
 
@@ -93,10 +92,10 @@ struct UmbridgeServerTest : ::testing::Test {
   }
 
   // The same functionals through the gRPC Evaluate.
-  pfem::v1::EvaluateResponse grpc_evaluate(const pfem::v1::Model& model,
-                                           const std::vector<std::pair<std::string, double>>& values,
-                                           const std::vector<std::pair<std::string, pfem::v1::Functional::Kind>>& outputs,
-                                           pfem::v1::SensitivityMethod method) {
+  pfem::v1::EvaluateResponse grpc_evaluate(
+      const pfem::v1::Model& model, const std::vector<std::pair<std::string, double>>& values,
+      const std::vector<std::pair<std::string, pfem::v1::Functional::Kind>>& outputs,
+      pfem::v1::SensitivityMethod method) {
     pfem::v1::EvaluateRequest request;
     *request.mutable_model() = model;
     for (const auto& [name, value] : values) {
@@ -129,13 +128,17 @@ TEST_F(UmbridgeServerTest, InfoModelInfoAndSizesHaveTheProtocolsShape) {
 
   const auto model_info = client->post("/ModelInfo", {{"name", "tiny"}});
   ASSERT_EQ(model_info.status, 200);
-  EXPECT_EQ(model_info.body, (json{{"support", {{"Evaluate", true}, {"Gradient", true},
-                                                {"ApplyJacobian", true}, {"ApplyHessian", false}}}}));
+  EXPECT_EQ(model_info.body, (json{{"support",
+                                    {{"Evaluate", true},
+                                     {"Gradient", true},
+                                     {"ApplyJacobian", true},
+                                     {"ApplyHessian", false}}}}));
 
   // Default: every parameter in, every recorder's final value out; config narrows both.
   EXPECT_EQ(client->post("/InputSizes", {{"name", "tiny"}}).body, (json{{"inputSizes", {2}}}));
   EXPECT_EQ(client->post("/OutputSizes", {{"name", "tiny"}}).body, (json{{"outputSizes", {3}}}));
-  const json config = {{"params", {"kappa"}}, {"outputs", {"bottom_p:max", "front_x:value_at:0.004"}}};
+  const json config = {{"params", {"kappa"}},
+                       {"outputs", {"bottom_p:max", "front_x:value_at:0.004"}}};
   EXPECT_EQ(client->post("/InputSizes", {{"name", "tiny"}, {"config", config}}).body,
             (json{{"inputSizes", {1}}}));
   EXPECT_EQ(client->post("/OutputSizes", {{"name", "tiny"}, {"config", config}}).body,
@@ -154,20 +157,21 @@ TEST_F(UmbridgeServerTest, InfoModelInfoAndSizesHaveTheProtocolsShape) {
 }
 
 TEST_F(UmbridgeServerTest, EvaluateIsBitIdenticalToTheGrpcEvaluate) {
-  const json request = {{"name", "tiny"},
-                        {"input", {{1005.0, 2.0e9}}},
-                        {"config", {{"outputs", {"bottom_p:max", "fluid_area:min", "front_x:final"}}}}};
+  const json request = {
+      {"name", "tiny"},
+      {"input", {{1005.0, 2.0e9}}},
+      {"config", {{"outputs", {"bottom_p:max", "fluid_area:min", "front_x:final"}}}}};
   const auto r = client->post("/Evaluate", request);
   ASSERT_EQ(r.status, 200) << r.body.dump();
   EXPECT_EQ(keys(r.body), std::vector<std::string>{"output"});
   const auto output = r.body["output"].get<std::vector<std::vector<double>>>();
   ASSERT_EQ(output.size(), 1u);
   ASSERT_EQ(output[0].size(), 3u);
-  const auto expected = grpc_evaluate(
-      tiny_model(), {{"rho_f", 1005.0}, {"kappa", 2.0e9}},
-      {{"bottom_p", pfem::v1::Functional::KIND_MAX}, {"fluid_area", pfem::v1::Functional::KIND_MIN},
-       {"front_x", pfem::v1::Functional::KIND_FINAL}},
-      pfem::v1::SENSITIVITY_METHOD_NONE);
+  const auto expected = grpc_evaluate(tiny_model(), {{"rho_f", 1005.0}, {"kappa", 2.0e9}},
+                                      {{"bottom_p", pfem::v1::Functional::KIND_MAX},
+                                       {"fluid_area", pfem::v1::Functional::KIND_MIN},
+                                       {"front_x", pfem::v1::Functional::KIND_FINAL}},
+                                      pfem::v1::SENSITIVITY_METHOD_NONE);
   for (int i = 0; i < 3; ++i) EXPECT_EQ(output[0][i], expected.values(i).value()) << i;
   // And `pfem run` (pfem::run) on the model with those values, bit for bit.
   auto model = tiny_model();
@@ -186,10 +190,11 @@ TEST_F(UmbridgeServerTest, EvaluateIsBitIdenticalToTheGrpcEvaluate) {
 
 // Gradient = sens^T J and ApplyJacobian = J vec, J from the gRPC DDM gradients (bit for bit),
 // and both against central differences of Evaluate within 1e-4.
-void check_derivatives(UmbridgeServerTest& t, const std::string& name, const pfem::v1::Model& model,
-                       const std::vector<std::pair<std::string, double>>& point,
-                       const std::vector<std::pair<std::string, pfem::v1::Functional::Kind>>& outputs,
-                       const std::vector<std::string>& output_names) {
+void check_derivatives(
+    UmbridgeServerTest& t, const std::string& name, const pfem::v1::Model& model,
+    const std::vector<std::pair<std::string, double>>& point,
+    const std::vector<std::pair<std::string, pfem::v1::Functional::Kind>>& outputs,
+    const std::vector<std::string>& output_names) {
   std::vector<double> input;
   json params = json::array();
   for (const auto& [p, v] : point) {
@@ -199,15 +204,21 @@ void check_derivatives(UmbridgeServerTest& t, const std::string& name, const pfe
   const json config = {{"params", params}, {"outputs", output_names}};
   const std::vector<double> sens = {0.75, -2.0};
   const std::vector<double> vec = {0.5, 3.0};
-  const auto gradient = t.client->post("/Gradient", {{"name", name}, {"input", {input}},
-                                                     {"outWrt", 0}, {"inWrt", 0},
-                                                     {"sens", sens}, {"config", config}});
+  const auto gradient = t.client->post("/Gradient", {{"name", name},
+                                                     {"input", {input}},
+                                                     {"outWrt", 0},
+                                                     {"inWrt", 0},
+                                                     {"sens", sens},
+                                                     {"config", config}});
   ASSERT_EQ(gradient.status, 200) << gradient.body.dump();
   EXPECT_EQ(keys(gradient.body), std::vector<std::string>{"output"});
   const auto hits = t.server->cache().hits();
-  const auto jv_reply = t.client->post("/ApplyJacobian", {{"name", name}, {"input", {input}},
-                                                          {"outWrt", 0}, {"inWrt", 0},
-                                                          {"vec", vec}, {"config", config}});
+  const auto jv_reply = t.client->post("/ApplyJacobian", {{"name", name},
+                                                          {"input", {input}},
+                                                          {"outWrt", 0},
+                                                          {"inWrt", 0},
+                                                          {"vec", vec},
+                                                          {"config", config}});
   ASSERT_EQ(jv_reply.status, 200) << jv_reply.body.dump();
   EXPECT_EQ(t.server->cache().hits(), hits + 1);  // the same point: the Gradient's run
   const auto g = gradient.body["output"].get<std::vector<double>>();
@@ -235,12 +246,15 @@ void check_derivatives(UmbridgeServerTest& t, const std::string& name, const pfe
     std::vector<double> plus = input, minus = input;
     plus[k] += h;
     minus[k] -= h;
-    const auto a = t.client->post("/Evaluate", {{"name", name}, {"input", {plus}}, {"config", config}});
-    const auto b = t.client->post("/Evaluate", {{"name", name}, {"input", {minus}}, {"config", config}});
+    const auto a =
+        t.client->post("/Evaluate", {{"name", name}, {"input", {plus}}, {"config", config}});
+    const auto b =
+        t.client->post("/Evaluate", {{"name", name}, {"input", {minus}}, {"config", config}});
     ASSERT_EQ(a.status, 200) << a.body.dump();
     ASSERT_EQ(b.status, 200) << b.body.dump();
     for (int i = 0; i < 2; ++i) {
-      fd[i][k] = (a.body["output"][0][i].get<double>() - b.body["output"][0][i].get<double>()) / (2 * h);
+      fd[i][k] =
+          (a.body["output"][0][i].get<double>() - b.body["output"][0][i].get<double>()) / (2 * h);
     }
   }
   for (int k = 0; k < 2; ++k) {
@@ -272,13 +286,15 @@ TEST_F(UmbridgeServerTest, DerivativesOfTheBeamModelMatchDdmAndFiniteDifferences
 TEST_F(UmbridgeServerTest, ConcurrentCallsAgreeWithSequentialOnes) {
   // Four clients at once on two workers, each at its own point: the same numbers as one by one.
   const auto body = [](int i) {
-    return json{{"name", "tiny"}, {"input", {{990.0 + 5.0 * i, 2.15e9}}},
+    return json{{"name", "tiny"},
+                {"input", {{990.0 + 5.0 * i, 2.15e9}}},
                 {"config", {{"outputs", {"bottom_p:max", "fluid_area:final"}}}}};
   };
   std::vector<Reply> parallel(4);
   std::vector<std::thread> threads;
   for (int i = 0; i < 4; ++i) {
-    threads.emplace_back([&, i] { parallel[i] = Client(server->umbridge_address()).post("/Evaluate", body(i)); });
+    threads.emplace_back(
+        [&, i] { parallel[i] = Client(server->umbridge_address()).post("/Evaluate", body(i)); });
   }
   for (auto& t : threads) t.join();
   start("");  // a fresh server: nothing cached
@@ -302,16 +318,19 @@ TEST_F(UmbridgeServerTest, AClientThatLeavesCancelsItsRun) {
   {
     httplib::Client impatient("http://" + server->umbridge_address());
     impatient.set_read_timeout(0, 300000);  // gives up after 0.3 s and hangs up
-    EXPECT_FALSE(impatient.Post("/Evaluate", json{{"name", "tiny"}, {"input", {{1000.0, 2.15e9}}}}.dump(),
+    EXPECT_FALSE(impatient.Post("/Evaluate",
+                                json{{"name", "tiny"}, {"input", {{1000.0, 2.15e9}}}}.dump(),
                                 "application/json"));
   }
-  for (int i = 0; i < 3000 && *ended < 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (int i = 0; i < 3000 && *ended < 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   EXPECT_EQ(*ended, static_cast<int>(pfem::RunStatus::kCancelled));
   EXPECT_EQ(server->cache().size(), 0u);
 }
 
 TEST_F(UmbridgeServerTest, ConfigShortensTheRun) {
-  const json request = {{"name", "tiny"}, {"input", {{1000.0, 2.15e9}}},
+  const json request = {{"name", "tiny"},
+                        {"input", {{1000.0, 2.15e9}}},
                         {"config", {{"outputs", {"front_x:final"}}, {"t_end", 0.004}}}};
   ASSERT_EQ(client->post("/Evaluate", request).status, 200);
   // The run behind it stopped at 4 ms: a value_at beyond it is out of the recorded times.
@@ -337,24 +356,48 @@ TEST_F(UmbridgeServerTest, BadRequestsGetTheProtocolsErrorsAndTheServerStaysUp) 
                "InvalidInput", "not JSON");
   expect_error(client->post("/Evaluate", {{"name", "tiny"}, {"input", {{-1000.0, 2.15e9}}}}), 400,
                "InvalidInput", "must be > 0 for fluid.rho");
-  expect_error(client->post("/Evaluate", {{"name", "tiny"}, {"input", ok_input},
+  expect_error(client->post("/Evaluate", {{"name", "tiny"},
+                                          {"input", ok_input},
                                           {"config", {{"outputs", {"bottom_p:median", "x:max"}}}}}),
                400, "InvalidInput", "config.outputs[0]: unknown kind 'median'");
-  expect_error(client->post("/OutputSizes", {{"name", "tiny"}, {"config", {{"outputs", {"x:max"}}}}}),
-               400, "InvalidInput", "config.outputs[0]: no recorder 'x' in the model");
+  expect_error(
+      client->post("/OutputSizes", {{"name", "tiny"}, {"config", {{"outputs", {"x:max"}}}}}), 400,
+      "InvalidInput", "config.outputs[0]: no recorder 'x' in the model");
   expect_error(client->post("/InputSizes", {{"name", "tiny"}, {"config", {{"dtt", 1}}}}), 400,
                "InvalidInput", "config.dtt: unknown option");
-  expect_error(client->post("/Gradient", {{"name", "tiny"}, {"input", ok_input}, {"outWrt", 1},
-                                          {"inWrt", 0}, {"sens", {1, 0, 0}}}),
+  expect_error(client->post("/Gradient", {{"name", "tiny"},
+                                          {"input", ok_input},
+                                          {"outWrt", 1},
+                                          {"inWrt", 0},
+                                          {"sens", {1, 0, 0}}}),
                400, "InvalidInput", "outWrt: must be 0");
-  expect_error(client->post("/Gradient", {{"name", "tiny"}, {"input", ok_input}, {"outWrt", 0},
-                                          {"inWrt", 0}, {"sens", {1.0}}}),
-               400, "InvalidInput", "sens: has 1 entries, the model expects 3");
-  expect_error(client->post("/ApplyJacobian", {{"name", "tiny"}, {"input", ok_input},
-                                               {"outWrt", 0}, {"inWrt", 0}}),
+  expect_error(client->post("/Gradient", {{"name", "tiny"},
+                                          {"input", ok_input},
+                                          {"outWrt", 0.5},
+                                          {"inWrt", 0},
+                                          {"sens", {1, 0, 0}}}),
+               400, "InvalidInput", "outWrt: required (an integer)");
+  expect_error(client->post("/Gradient", {{"name", "tiny"},
+                                          {"input", {json::array()}},
+                                          {"outWrt", 0},
+                                          {"inWrt", 0},
+                                          {"sens", {1, 0, 0}},
+                                          {"config", {{"params", json::array()}}}}),
+               400, "InvalidInput", "nothing to differentiate");
+  expect_error(
+      client->post(
+          "/Gradient",
+          {{"name", "tiny"}, {"input", ok_input}, {"outWrt", 0}, {"inWrt", 0}, {"sens", {1.0}}}),
+      400, "InvalidInput", "sens: has 1 entries, the model expects 3");
+  expect_error(client->post("/ApplyJacobian",
+                            {{"name", "tiny"}, {"input", ok_input}, {"outWrt", 0}, {"inWrt", 0}}),
                400, "InvalidInput", "vec: required");
-  expect_error(client->post("/ApplyHessian", {{"name", "tiny"}, {"input", ok_input}, {"outWrt", 0},
-                                              {"inWrt1", 0}, {"inWrt2", 0}, {"sens", {1, 0, 0}},
+  expect_error(client->post("/ApplyHessian", {{"name", "tiny"},
+                                              {"input", ok_input},
+                                              {"outWrt", 0},
+                                              {"inWrt1", 0},
+                                              {"inWrt2", 0},
+                                              {"sens", {1, 0, 0}},
                                               {"vec", {1, 0}}}),
                400, "UnsupportedFeature", "ApplyHessian");
   // A body over --max-message-mb (64 MB): 100 MB of blanks.
