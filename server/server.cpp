@@ -116,13 +116,14 @@ void Server::shutdown() {
           (umbridge_ && umbridge_->in_flight() > 0))) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
-  const int calls = service_->in_flight();
+  const int calls = service_->in_flight() + (umbridge_ ? umbridge_->in_flight() : 0);
   const long jobs = jobs_->running();
   // Then cancel what is left: calls end CANCELLED, running jobs are stored as QUEUED.
+  if (umbridge_) umbridge_->cancel_calls();
   server_->Shutdown(std::chrono::system_clock::now());
   jobs_->stop(std::chrono::steady_clock::now());
   server_->Wait();
-  if (umbridge_) umbridge_->stop();  // its runs were interrupted with the jobs
+  if (umbridge_) umbridge_->stop();  // its calls have ended: their runs were cancelled
   std::fprintf(stderr, "pfem-server: drained in %.3f s (%d calls and %ld jobs were cut short)\n",
                since(), calls, jobs);
 }

@@ -152,7 +152,7 @@ void UmbridgeServer::stop() {
 void UmbridgeServer::add_routes() {
   // Runs one call: draining and auth checks, the body parsed as a JSON object, errors
   // converted once into the protocol's format.
-  // A run stops (CANCELLED) when its client closes the connection.
+  // A run stops (CANCELLED) when its client closes the connection, or at cancel_calls().
   using Body = std::function<json(const json& body, const Evaluator::StopFunction& should_stop)>;
   const auto route = [this](bool post, const char* path, Body body) {
     const auto handler = [this, body, post](const httplib::Request& req, httplib::Response& res) {
@@ -172,11 +172,12 @@ void UmbridgeServer::add_routes() {
           if (!request.is_object()) throw invalid("the request body must be a JSON object");
         }
         int fd = -2;  // the client's socket, looked up when a run first polls
-        const auto client_gone = [&] {
+        const auto should_stop = [&] {
+          if (cancelled_) return grpc::StatusCode::CANCELLED;
           if (fd == -2) fd = find_peer_socket(port_, req.remote_addr, req.remote_port);
           return fd >= 0 && peer_closed(fd) ? grpc::StatusCode::CANCELLED : grpc::StatusCode::OK;
         };
-        send(res, 200, body(request, client_gone));
+        send(res, 200, body(request, should_stop));
       } catch (...) {
         send_error(res, current_error());
       }

@@ -53,6 +53,8 @@ class UmbridgeServer {
   // From now on every call gets 503 Unavailable; calls already running go on.
   void begin_drain() { draining_ = true; }
   int in_flight() const { return in_flight_.load(); }
+  // Cancels the runs of the calls in progress (they answer 500 Cancelled): the end of a drain.
+  void cancel_calls() { cancelled_ = true; }
   // Stops listening and waits for the calls in progress.
   void stop();
 
@@ -67,6 +69,7 @@ class UmbridgeServer {
   std::string host_;
   int port_ = 0;
   std::atomic<bool> draining_{false};
+  std::atomic<bool> cancelled_{false};
   std::atomic<int> in_flight_{0};
 };
 

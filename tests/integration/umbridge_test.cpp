@@ -72,6 +72,7 @@ struct UmbridgeServerTest : ::testing::Test {
   TempDir dir{"umbridge"};
   std::unique_ptr<pfem::server::Server> server;
   std::unique_ptr<Client> client;
+  double grace_seconds = 5.0;  // of the next start()
 
   void SetUp() override { start({}); }
 
@@ -83,6 +84,7 @@ struct UmbridgeServerTest : ::testing::Test {
     };
     auto o = local_options(dir.path / "data");
     o.umbridge_listen = "127.0.0.1:0";
+    o.grace_seconds = grace_seconds;
     o.umbridge_models = {{"tiny", write("tiny.json", kTinyModelJson)},
                          {"cantilever", write("cantilever.json", kTinyCantileverJson)}};
     if (!token.empty()) o.token_file = write("tokens", token.c_str());
@@ -118,6 +120,25 @@ struct UmbridgeServerTest : ::testing::Test {
     return response;
   }
 };
+
+// What became of a run of ten_second_engine.
+struct RunLog {
+  std::atomic<bool> started{false};
+  std::atomic<int> ended{-1};  // its RunStatus once it has ended
+};
+
+// A fake engine of 2000 steps of 5 ms (10 s) that logs its run.
+pfem::server::JobManager::RunFunction ten_second_engine(std::shared_ptr<RunLog> log) {
+  FakeEngine fake;
+  fake.steps = 2000;
+  fake.step_seconds = 0.005;
+  return [engine = fake.function(), log](const pfem::v1::Model& m, const pfem::RunOptions& o) {
+    log->started = true;
+    auto r = engine(m, o);
+    log->ended = static_cast<int>(r.summary.status);
+    return r;
+  };
+}
 
 TEST_F(UmbridgeServerTest, InfoModelInfoAndSizesHaveTheProtocolsShape) {
   const auto info = client->get("/Info");
@@ -305,16 +326,8 @@ TEST_F(UmbridgeServerTest, ConcurrentCallsAgreeWithSequentialOnes) {
 }
 
 TEST_F(UmbridgeServerTest, AClientThatLeavesCancelsItsRun) {
-  // A fake engine of 2000 steps of 5 ms (10 s) that tells how its run ended.
-  FakeEngine fake;
-  fake.steps = 2000;
-  fake.step_seconds = 0.005;
-  auto ended = std::make_shared<std::atomic<int>>(-1);  // the RunStatus once it has ended
-  start("", [engine = fake.function(), ended](const pfem::v1::Model& m, const pfem::RunOptions& o) {
-    auto r = engine(m, o);
-    *ended = static_cast<int>(r.summary.status);
-    return r;
-  });
+  auto log = std::make_shared<RunLog>();
+  start("", ten_second_engine(log));
   {
     httplib::Client impatient("http://" + server->umbridge_address());
     impatient.set_read_timeout(0, 300000);  // gives up after 0.3 s and hangs up
@@ -322,10 +335,56 @@ TEST_F(UmbridgeServerTest, AClientThatLeavesCancelsItsRun) {
                                 json{{"name", "tiny"}, {"input", {{1000.0, 2.15e9}}}}.dump(),
                                 "application/json"));
   }
-  for (int i = 0; i < 3000 && *ended < 0; ++i)
+  for (int i = 0; i < 3000 && log->ended < 0; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  EXPECT_EQ(*ended, static_cast<int>(pfem::RunStatus::kCancelled));
+  EXPECT_EQ(log->ended, static_cast<int>(pfem::RunStatus::kCancelled));
   EXPECT_EQ(server->cache().size(), 0u);
+}
+
+TEST_F(UmbridgeServerTest, ACallInProgressFinishesWhileTheServerDrains) {
+  FakeEngine fake;  // 100 steps of 10 ms, recorder "x" = t
+  fake.steps = 100;
+  fake.step_seconds = 0.01;
+  start("", fake.function());
+  auto model = tiny_model();
+  model.mutable_recorders(0)->set_name("x");
+  auto stub = make_stub(server->address());
+  grpc::ClientContext context;
+  pfem::v1::PutModelRequest put;
+  *put.mutable_model() = model;
+  pfem::v1::PutModelResponse stored;
+  ASSERT_TRUE(stub->PutModel(&context, put, &stored).ok());
+  Reply reply;
+  std::thread call([&] {
+    reply = client->post("/Evaluate", {{"name", stored.model_id()},
+                                       {"input", {{1000.0, 2.15e9}}},
+                                       {"config", {{"outputs", {"x:final"}}}}});
+  });
+  for (int i = 0; i < 1000 && *fake.runs == 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  server->shutdown();  // grace 5 s: the 1 s run ends within it
+  call.join();
+  ASSERT_EQ(reply.status, 200) << reply.body.dump();
+  EXPECT_DOUBLE_EQ(reply.body["output"][0][0].get<double>(), 100 * 0.001);
+  EXPECT_EQ(Client(server->umbridge_address()).get("/Info").status, -1);  // no longer listening
+}
+
+TEST_F(UmbridgeServerTest, ACallStillRunningAtTheEndOfTheGraceIsCancelled) {
+  auto log = std::make_shared<RunLog>();
+  grace_seconds = 0.2;
+  start("", ten_second_engine(log));
+  Reply reply;
+  std::thread call([&] {
+    reply = client->post("/Evaluate", {{"name", "tiny"}, {"input", {{1000.0, 2.15e9}}}});
+  });
+  for (int i = 0; i < 1000 && !log->started; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  server.reset();  // ~Server drains: 0.2 s of grace, then the run is cancelled
+  call.join();
+  expect_error(reply, 500, "Cancelled", "cancelled");
+  EXPECT_EQ(log->ended, static_cast<int>(pfem::RunStatus::kCancelled));
 }
 
 TEST_F(UmbridgeServerTest, ConfigShortensTheRun) {
