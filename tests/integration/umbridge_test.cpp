@@ -410,7 +410,10 @@ TEST_F(UmbridgeServerTest, BadRequestsGetTheProtocolsErrorsAndTheServerStaysUp) 
   expect_error(client->post_raw("/Evaluate", "{\"name\": \"tiny\", "), 400, "InvalidInput",
                "not JSON");
   expect_error(client->post_raw("/Evaluate", "[1, 2]"), 400, "InvalidInput", "JSON object");
-  // JSON has no NaN; an overflowing number is the way a non-finite input arrives.
+  // JSON has no NaN (Python's json.dumps writes it bare); an overflowing number is the other
+  // way a non-finite input arrives.
+  expect_error(client->post_raw("/Evaluate", R"({"name": "tiny", "input": [[NaN, 2e9]]})"), 400,
+               "InvalidInput", "not JSON");
   expect_error(client->post_raw("/Evaluate", R"({"name": "tiny", "input": [[1e999, 2e9]]})"), 400,
                "InvalidInput", "not JSON");
   expect_error(client->post("/Evaluate", {{"name", "tiny"}, {"input", {{-1000.0, 2.15e9}}}}), 400,
