@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "server/limits.h"
@@ -20,6 +21,9 @@ struct ServerOptions {
   Limits limits;                           // --max-queued, --max-particles, --max-steps, --max-message-mb
   double grace_seconds = 30.0;             // --grace-seconds S: drain time on SIGTERM/SIGINT
   std::size_t cache_entries = 256;         // --cache-entries N: Evaluate runs kept in memory
+  std::string umbridge_listen;             // --umbridge-listen HOST:PORT: UM-Bridge 1.0 HTTP; empty = off
+  // --umbridge-model NAME=FILE (repeatable): models served under NAME over UM-Bridge
+  std::vector<std::pair<std::string, std::filesystem::path>> umbridge_models;
 
   // "--flag: rule" for every invalid setting; empty when valid.
   std::vector<std::string> validate() const;
