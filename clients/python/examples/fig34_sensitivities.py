@@ -83,7 +83,6 @@ def _from_client(result):
 
 def fetch(args, params):
     """(DDM result, FDM result or None) from the server: submitted here or given by id."""
-    from pfem.v1 import service_pb2
     from pfem_client import Client
 
     def progress(tag):
@@ -92,9 +91,9 @@ def fetch(args, params):
         def show(job):
             p = job.progress
             if p.total_steps and (p.step * 10 // p.total_steps != last[0] or
-                                  job.state >= service_pb2.JOB_STATE_SUCCEEDED):
+                                  job.finished):
                 last[0] = p.step * 10 // p.total_steps
-                print(f"{tag} {service_pb2.JobState.Name(job.state)[10:]} step "
+                print(f"{tag} {job.state} step "
                       f"{p.step}/{p.total_steps} t={p.time:.4g} s "
                       f"elapsed {p.elapsed_seconds:.1f} s", flush=True)
         return show
@@ -116,8 +115,8 @@ def fetch(args, params):
                 out.append(None)
                 continue
             job = client.watch(job_id, callback=progress(f"{tag} {job_id}"))
-            if job.state != service_pb2.JOB_STATE_SUCCEEDED:
-                print(f"fig34: job {job_id} {service_pb2.JobState.Name(job.state)}: "
+            if job.state != "SUCCEEDED":
+                print(f"fig34: job {job_id} {job.state}: "
                       f"{job.error.message}" + (" (no FDM overlay)" if tag == "fdm" else ""),
                       file=sys.stderr)
                 if tag == "fdm":

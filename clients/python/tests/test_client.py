@@ -94,7 +94,11 @@ class ClientTest(unittest.TestCase):
         updates = []
         job = self.client.watch(job_id, callback=updates.append)
         self.assertGreaterEqual(len(updates), 1)
-        self.assertEqual(job.state, 3, job.error.message)  # JOB_STATE_SUCCEEDED
+        self.assertEqual(job.state, "SUCCEEDED", job.error.message)
+        self.assertEqual([j.id for j in self.client.list_jobs("succeeded")].count(job_id), 1)
+        self.assertNotIn(job_id, [j.id for j in self.client.list_jobs("RUNNING")])
+        with self.assertRaises(ValueError):
+            self.client.list_jobs("DONE")
         self.assertEqual(job.progress.step, 5)
 
         result = self.client.result(job_id)
