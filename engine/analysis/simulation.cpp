@@ -143,7 +143,8 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
 
   const int vtk_every = options.vtk_every.value_or(problem.vtk_every);
   std::unique_ptr<VtkSeries> vtk;
-  if (!options.vtk_dir.empty()) vtk = std::make_unique<VtkSeries>(options.vtk_dir);
+  if (!options.vtk_dir.empty())
+    vtk = std::make_unique<VtkSeries>(options.vtk_dir, problem.sensitivity_params, problem.structure_nodes);
 
   auto t0 = Clock::now();
   mesh::FluidMesh mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
@@ -158,7 +159,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
     out.sensitivities.rows.push_back(sample_recorder_sensitivities(problem, nodes, mesh, model));
   };
   record(0.0);
-  if (vtk) vtk->write(0.0, nodes, mesh);
+  if (vtk) vtk->write(0.0, nodes, mesh, model);
 
   for (int n = 1; n <= total_steps; ++n) {
     const bool shortened = short_last && n == total_steps;
@@ -185,7 +186,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
         throw StepFailure(msg.str());
       }
       if (n % problem.record_every == 0 || n == total_steps) record(time);
-      if (vtk && (n % vtk_every == 0 || n == total_steps)) vtk->write(time, nodes, mesh);
+      if (vtk && (n % vtk_every == 0 || n == total_steps)) vtk->write(time, nodes, mesh, model);
       sum.fluid_area_final = fluid_area(mesh, nodes);
       sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind,
                                                             problem.removal_distance * problem.h);
