@@ -3,7 +3,7 @@
 //            [--params a,b] [--fdm-eps E] [--vtk-every N] [--vtk] [--threads N] [--progress]
 //   pfem check-gradients MODEL.json [--params a,b] [--t-end T] [--dt DT] [--fdm-eps E]
 //            [--tolerance TOL] [--threads N]
-//   pfem validate MODEL.json
+//   pfem validate MODEL.json     (every error; then warnings and the run's estimated size and time)
 // `pfem run` prints a progress line on stderr when stderr is a terminal (or with --progress);
 // SIGINT or SIGTERM stops it at the end of the step in progress and writes every output with
 // status "cancelled" (a second signal ends it at once).
@@ -27,6 +27,7 @@
 #include "engine/cli/arguments.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
+#include "engine/io/model_warnings.h"
 #include "engine/io/results_io.h"
 
 namespace {
@@ -74,6 +75,16 @@ class ProgressLine {
   std::chrono::steady_clock::time_point last_{};
 };
 
+// "42 s", "3.5 min", "2.1 h", "4.0 days".
+std::string duration(double seconds) {
+  char buf[32];
+  if (seconds < 120) std::snprintf(buf, sizeof buf, "%.2g s", seconds);
+  else if (seconds < 7200) std::snprintf(buf, sizeof buf, "%.1f min", seconds / 60);
+  else if (seconds < 172800) std::snprintf(buf, sizeof buf, "%.1f h", seconds / 3600);
+  else std::snprintf(buf, sizeof buf, "%.1f days", seconds / 86400);
+  return buf;
+}
+
 int usage_error(const std::string& message) {
   std::cerr << "pfem: " << message << "\n" << kUsage;
   return 2;
@@ -105,15 +116,21 @@ int with_exit_codes(const std::function<int()>& body) {
   }
 }
 
+// Errors (exit 2), else "valid"; then the warnings and the run's estimated size and time.
 int validate(const std::vector<std::string>& args) {
   if (args.size() != 1) return usage_error("validate takes one model file");
   try {
     const auto model = pfem::read_model_file(args[0]);
     const auto errors = pfem::model_errors(model);
     for (const auto& e : errors) std::cerr << e.to_string() << "\n";
-    if (!errors.empty()) return 2;
-    std::cout << args[0] << ": valid\n";
-    return 0;
+    if (errors.empty()) std::cout << args[0] << ": valid\n";
+    if (errors.empty())
+      for (const auto& w : pfem::model_warnings(model)) std::cerr << "warning: " << w.to_string() << "\n";
+    if (const auto e = pfem::estimate_run(model); e.particles > 0 && e.steps > 0)
+      std::printf("estimate: %ld particles, about %ld elements, %ld steps, about %s (response only, 1 thread, "
+                  "at %.2g us per particle and step measured here)\n",
+                  e.particles, e.elements, e.steps, duration(e.seconds).c_str(), e.seconds_per_particle_step * 1e6);
+    return errors.empty() ? 0 : 2;
   } catch (const pfem::ModelError& e) {
     for (const auto& err : e.errors()) std::cerr << err.to_string() << "\n";
     return 2;
