@@ -4,13 +4,15 @@ from __future__ import annotations
 import json
 import os
 from dataclasses import dataclass, field
-from typing import Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Union
+from typing import Callable, Iterable, List, Mapping, Optional, Sequence, Union
 
 import grpc
 import numpy as np
 from google.protobuf import json_format
 
 from pfem.v1 import model_pb2, service_pb2, service_pb2_grpc
+
+from .results import Result
 
 ModelLike = Union[str, os.PathLike, Mapping, model_pb2.Model]
 
@@ -53,25 +55,6 @@ def load_model(model: ModelLike) -> model_pb2.Model:
         with open(text, encoding="utf-8") as f:
             text = f.read()
     return json_format.Parse(text, model_pb2.Model())
-
-
-@dataclass
-class Result:
-    """A job's result: histories as numpy arrays (one entry per sample time)."""
-
-    time: np.ndarray
-    responses: Dict[str, np.ndarray]
-    sensitivity_time: np.ndarray
-    sensitivities: Dict[str, np.ndarray]  # keys "d<recorder>/d<param>"
-    summary: service_pb2.Summary
-    job: service_pb2.Job
-
-    def sensitivity(self, recorder: str, param: str) -> np.ndarray:
-        return self.sensitivities[f"d{recorder}/d{param}"]
-
-    @property
-    def parameters(self) -> List[str]:
-        return list(self.summary.parameters)
 
 
 @dataclass
@@ -272,7 +255,8 @@ class Client:
             responses={n: join(c) for n, c in zip(header.response_columns, columns[r])},
             sensitivity_time=join(times[s]),
             sensitivities={n: join(c) for n, c in zip(header.sensitivity_columns, columns[s])},
-            summary=header.summary, job=header.job)
+            summary=summary_dict(header.summary), name=header.job.model_name,
+            job=Job(header.job))
 
     def put_model(self, model: ModelLike) -> str:
         return self._call(self._stub.PutModel,
@@ -312,6 +296,13 @@ class Client:
 
 
 def summary_dict(summary: service_pb2.Summary) -> dict:
-    """The summary as a plain dict (field names as in summary.json)."""
-    return json.loads(json_format.MessageToJson(summary, preserving_proto_field_name=True,
-                                                including_default_value_fields=True))
+    """The summary as a dict with the keys and values of summary.json (status "completed",
+    parameters {name: value}, ...)."""
+    d = json.loads(json_format.MessageToJson(summary, preserving_proto_field_name=True,
+                                             including_default_value_fields=True))
+    d["status"] = service_pb2.RunStatus.Name(summary.status)[len("RUN_STATUS_"):].lower()
+    d["parameters"] = dict(zip(summary.parameters, summary.parameter_values))
+    del d["parameter_values"]
+    for key in ("newton_iterations", "factorizations"):  # int64 fields come as JSON strings
+        d[key] = int(d[key])
+    return d
