@@ -7,6 +7,7 @@ Run by ctest (pfem_run_signals_test) with PFEM_CLI=build/bin/pfem, PFEM_SOURCE_D
 import csv
 import json
 import os
+import pty
 import shutil
 import signal
 import subprocess
@@ -70,6 +71,28 @@ class RunSignalsTest(unittest.TestCase):
         if sensitivity != "none":
             self.assertEqual(rows(os.path.join(out, "sensitivities.csv")),
                              rows(os.path.join(ref, "sensitivities.csv")))
+
+    def test_progress_on_a_terminal_without_the_flag(self):
+        """stderr a terminal (a pseudo-terminal here): the line is rewritten in place (\\r)."""
+        master, slave = pty.openpty()
+        out = os.path.join(self.tmp, "tty")
+        proc = subprocess.Popen([PFEM, "run", self.model, "--out", out, "--t-end", "0.02"],
+                                stdout=subprocess.DEVNULL, stderr=slave)
+        os.close(slave)
+        seen = b""
+        while True:
+            try:
+                chunk = os.read(master, 4096)
+            except OSError:  # the child closed the terminal
+                break
+            if not chunk:
+                break
+            seen += chunk
+        os.close(master)
+        self.assertEqual(proc.wait(timeout=60), 0)
+        text = seen.decode()
+        self.assertIn("\rstep 1/20  t = 0.0010 s  newton ", text)
+        self.assertIn("\rstep 20/20  t = 0.0200 s  newton ", text)
 
     def test_sigint(self):
         self.interrupted(signal.SIGINT, "none")
