@@ -14,6 +14,7 @@ import subprocess
 import sys
 import tempfile
 import textwrap
+import threading
 import unittest
 from contextlib import redirect_stdout
 
@@ -100,6 +101,31 @@ class EngineModuleTest(unittest.TestCase):
         self.assertGreaterEqual(answer["steps"], 3)
         self.assertLess(answer["steps"], 100)
         self.assertEqual(answer["rows"], answer["steps"] + 1)  # record_every 1: t = 0 and each step
+
+    def test_two_runs_go_side_by_side(self):
+        """The GIL is released while the engine runs: two threads' runs report their steps
+        interleaved. Python's own thread switching is turned off here, so that only a released
+        GIL lets the second run go while the first one computes (held, one run would end before
+        the other started)."""
+        hydrostatic = os.path.join(SOURCE, "examples", "hydrostatic.json")
+        calls = []
+
+        def go(tag):
+            pfem.run(hydrostatic, t_end=0.25, progress=lambda p: calls.append(tag))
+
+        interval = sys.getswitchinterval()
+        sys.setswitchinterval(1000.0)
+        try:
+            threads = [threading.Thread(target=go, args=(tag,)) for tag in ("a", "b")]
+            for t in threads:
+                t.start()
+            for t in threads:
+                t.join()
+        finally:
+            sys.setswitchinterval(interval)
+        self.assertEqual((calls.count("a"), calls.count("b")), (125, 125))
+        switches = sum(x != y for x, y in zip(calls, calls[1:]))
+        self.assertGreater(switches, 1, "one run ended before the other started")
 
     def test_progress_callback_exception_stops_the_run(self):
         def stop(p):
