@@ -151,9 +151,6 @@ TEST(DdmGradient, IterativeAndDirectSensitivitySolvesAgree) {
   }
 }
 
-}  // namespace
-}  // namespace pfem
-
 // Sloshing in a tank with free-slip walls (issue 14): the wall nodes carry a tangential velocity
 // unknown and slide to the contact line; the wave gauge (a free edge's crossing with a fixed
 // vertical line) and the pressure at a fixed point (interpolated in the triangle that holds it)
@@ -185,3 +182,6 @@ TEST(DdmGradient, SlipWallTankWithAWaveGaugeAndAPressurePoint) {
   }
   EXPECT_GE(checked, 4);  // at least the two pressures w.r.t. rho_f and mu
 }
+
+}  // namespace
+}  // namespace pfem
