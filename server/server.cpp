@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "engine/analysis/blas_threads.h"
+
 namespace pfem::server {
 namespace {
 
@@ -37,16 +39,27 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
     credentials = grpc::SslServerCredentials(ssl);
   }
 
+  JobManagerOptions job_options;
+  job_options.workers = options_.workers > 0
+                            ? options_.workers
+                            : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Workers run side by side and each calls the BLAS (pfem::run): a BLAS without locks would
+  // mix their products (different results for identical jobs), so refuse rather than answer
+  // wrongly.
+  if (!run && job_options.workers > 1 && !blas_is_thread_safe()) {
+    throw std::runtime_error(
+        "--workers: " + std::to_string(job_options.workers) +
+        " workers would call the BLAS from several threads at once, but the loaded BLAS (" +
+        blas_description() +
+        ") is not thread-safe: install libopenblas0-pthread (scripts/install-deps) or use "
+        "--workers 1");
+  }
+  job_options.max_queued = options_.limits.max_queued;
   try {
     store_ = std::make_unique<Store>(options_.data_dir);
   } catch (const StoreError& e) {
     throw std::runtime_error(std::string("--data-dir: ") + e.what());
   }
-  JobManagerOptions job_options;
-  job_options.workers = options_.workers > 0
-                            ? options_.workers
-                            : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  job_options.max_queued = options_.limits.max_queued;
   jobs_ = std::make_unique<JobManager>(*store_, job_options, std::move(run));
   cache_ = std::make_unique<ResultCache>(options_.cache_entries);
   service_ = std::make_unique<GradientService>(*store_, *jobs_, *cache_, auth_, options_.limits);
