@@ -11,7 +11,7 @@ const char* const kServerUsage =
     "usage: pfem-server --listen HOST:PORT --data-dir DIR [--token-file F] [--workers N]\n"
     "                   [--tls-cert F --tls-key F] [--max-queued N] [--max-particles N]\n"
     "                   [--max-steps N] [--max-message-mb N] [--grace-seconds S]\n"
-    "                   [--cache-entries N]\n";
+    "                   [--cache-entries N] [--max-store-mb N]\n";
 
 std::vector<std::string> ServerOptions::validate() const {
   std::vector<std::string> errors;
@@ -52,6 +52,10 @@ ServerOptions parse_server_options(const std::vector<std::string>& args) {
   if (auto v = a.take_int("--cache-entries")) {
     if (*v < 0) throw std::invalid_argument("--cache-entries: must be >= 0");
     o.cache_entries = static_cast<std::size_t>(*v);
+  }
+  if (auto v = a.take_int("--max-store-mb")) {
+    if (*v < 0) throw std::invalid_argument("--max-store-mb: must be >= 0 (0 = no cap)");
+    o.max_store_mb = *v;
   }
   a.expect_done(0);
   return o;

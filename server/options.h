@@ -20,6 +20,7 @@ struct ServerOptions {
   Limits limits;                           // --max-queued, --max-particles, --max-steps, --max-message-mb
   double grace_seconds = 30.0;             // --grace-seconds S: drain time on SIGTERM/SIGINT
   std::size_t cache_entries = 256;         // --cache-entries N: Evaluate runs kept in memory
+  long long max_store_mb = 0;              // --max-store-mb N: cap on the database; 0 = none
 
   // "--flag: rule" for every invalid setting; empty when valid.
   std::vector<std::string> validate() const;

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "engine/analysis/blas_threads.h"
+#include "server/malformed_requests.h"
 
 namespace pfem::server {
 namespace {
@@ -56,7 +57,7 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
   }
   job_options.max_queued = options_.limits.max_queued;
   try {
-    store_ = std::make_unique<Store>(options_.data_dir);
+    store_ = std::make_unique<Store>(options_.data_dir, options_.max_store_mb * 1024 * 1024);
   } catch (const StoreError& e) {
     throw std::runtime_error(std::string("--data-dir: ") + e.what());
   }
@@ -72,6 +73,9 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
   builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.AddListeningPort(options_.listen, credentials, &port_);
   builder.RegisterService(service_.get());
+  std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors;
+  interceptors.push_back(std::make_unique<MalformedRequestsFactory>());
+  builder.experimental().SetInterceptorCreators(std::move(interceptors));
   const int max_bytes = options_.limits.max_message_mb * 1024 * 1024;
   builder.SetMaxReceiveMessageSize(max_bytes);
   builder.SetMaxSendMessageSize(max_bytes);

@@ -22,7 +22,12 @@ bool finished(pfem::v1::JobState s) {
 }
 
 void require_job_id(const pfem::v1::JobRequest& request) {
+  constexpr std::size_t kMaxJobId = 64;  // ids are 16 hex digits
   if (request.job_id().empty()) throw_invalid({{"job_id", "required"}});
+  if (request.job_id().size() > kMaxJobId) {
+    throw_invalid({{"job_id", "too long (" + std::to_string(request.job_id().size()) +
+                                  " characters; job ids have 16)"}});
+  }
 }
 
 FunctionalKind kind_of(pfem::v1::Functional::Kind kind) {
@@ -207,7 +212,12 @@ grpc::Status GradientService::ListJobs(grpc::ServerContext* context,
                                        const pfem::v1::ListJobsRequest* request,
                                        pfem::v1::ListJobsResponse* response) {
   return handle(context, [&] {
-    if (request->limit() < 0) throw_invalid({{"limit", "must be >= 0"}});
+    std::vector<FieldError> errors;
+    if (request->limit() < 0) errors.push_back({"limit", "must be >= 0"});
+    if (!pfem::v1::JobState_IsValid(request->state())) {
+      errors.push_back({"state", "unknown job state " + std::to_string(request->state())});
+    }
+    if (!errors.empty()) throw_invalid(errors);
     const int limit = request->limit() == 0 ? 100 : request->limit();
     for (auto& job : store_.list_jobs(request->state(), limit)) {
       if (!finished(job.state())) {
