@@ -8,6 +8,7 @@
 #include "server/convert.h"
 #include "server/functional.h"
 #include "server/hashing.h"
+#include "server/model_cost.h"
 #include "server/requests.h"
 #include "server/status.h"
 
@@ -79,9 +80,16 @@ grpc::Status GradientService::ValidateModel(grpc::ServerContext* context,
                                             const pfem::v1::ValidateModelRequest* request,
                                             pfem::v1::ValidateModelResponse* response) {
   return handle(context, [&] {
-    // Building the model finds more, but only a model within the particle limit is built.
-    const bool buildable = estimate_particles(request->model()) <= limits_.max_particles;
-    for (const auto& e : buildable ? model_errors(request->model()) : validate_model(request->model())) {
+    // Only a model within the cost limits is validated, and only one within the particle
+    // limit too is built (which finds more).
+    check_model_cost(request->model(), limits_);
+    auto errors = polygon_errors(request->model());
+    const bool buildable =
+        errors.empty() && estimate_particles(request->model()) <= limits_.max_particles;
+    for (auto& e : buildable ? model_errors(request->model()) : validate_model(request->model())) {
+      errors.push_back(std::move(e));
+    }
+    for (const auto& e : errors) {
       auto* fe = response->add_errors();
       fe->set_path(e.path);
       fe->set_message(e.message);
