@@ -297,4 +297,22 @@ TEST(ServiceRobustness, ModelCostIsBoundedBeforeValidationStarts) {
   EXPECT_TRUE(mentions(status, "fluid_regions[1].polygon: edges 0 and 2 cross"));
 }
 
+// Two wall points 1e-9 m apart (1e-7 h) validated, then every run failed in the remesher
+// ("constraint 0 (0, 0) needs two different node indices") and Evaluate answered INTERNAL.
+TEST(ServiceRobustness, NearDuplicateWallPointsAreAFieldError) {
+  TempDir dir("robust_near");
+  pfem::server::Server server(local_options(dir.path), FakeEngine{}.function());
+  auto stub = make_stub(server.address());
+  auto request = fake_request();
+  auto* points = request.mutable_model()->mutable_walls(0)->mutable_points();
+  auto* near = points->Add();
+  near->set_x(1e-9);
+  near->set_y(0.0);
+  for (int i = points->size() - 1; i > 1; --i) points->SwapElements(i, i - 1);  // second point
+  std::string id;
+  const auto status = submit(*stub, request, &id);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << status.error_message();
+  EXPECT_TRUE(mentions(status, "walls[0].points[1]: is only 1e-09 m from the previous point"));
+}
+
 }  // namespace
