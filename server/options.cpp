@@ -12,7 +12,7 @@ const char* const kServerUsage =
     "                   [--tls-cert F --tls-key F] [--max-queued N] [--max-particles N]\n"
     "                   [--max-steps N] [--max-message-mb N] [--grace-seconds S]\n"
     "                   [--cache-entries N] [--max-store-mb N] [--max-geometry-points N]\n"
-    "                   [--max-fiber-points N]\n";
+    "                   [--max-fiber-points N] [--reflection]\n";
 
 std::vector<std::string> ServerOptions::validate() const {
   std::vector<std::string> errors;
@@ -62,6 +62,7 @@ ServerOptions parse_server_options(const std::vector<std::string>& args) {
     if (*v < 0) throw std::invalid_argument("--max-store-mb: must be >= 0 (0 = no cap)");
     o.max_store_mb = *v;
   }
+  o.reflection = a.take_flag("--reflection");
   a.expect_done(0);
   return o;
 }

@@ -21,6 +21,7 @@ struct ServerOptions {
   double grace_seconds = 30.0;             // --grace-seconds S: drain time on SIGTERM/SIGINT
   std::size_t cache_entries = 256;         // --cache-entries N: Evaluate runs kept in memory
   long long max_store_mb = 0;              // --max-store-mb N: cap on the database; 0 = none
+  bool reflection = false;                 // --reflection: serve gRPC reflection (the schema)
 
   // "--flag: rule" for every invalid setting; empty when valid.
   std::vector<std::string> validate() const;

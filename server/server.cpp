@@ -2,6 +2,7 @@
 
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/impl/server_builder_option.h>
 
 #include <cstdio>
 #include <fstream>
@@ -22,6 +23,21 @@ std::string read_file(const std::filesystem::path& file, const char* flag) {
   s << in.rdbuf();
   return s.str();
 }
+
+// Reflection for one builder, on or off. Linking grpc++_reflection registers its plugin for
+// every server of the process (a static initializer), so the option also takes it out.
+class ReflectionOption : public grpc::ServerBuilderOption {
+ public:
+  explicit ReflectionOption(bool enabled) : enabled_(enabled) {}
+  void UpdateArguments(grpc::ChannelArguments*) override {}
+  void UpdatePlugins(std::vector<std::unique_ptr<grpc::ServerBuilderPlugin>>* plugins) override {
+    std::erase_if(*plugins, [](const auto& p) { return p->name() == "proto_server_reflection"; });
+    if (enabled_) plugins->push_back(std::make_unique<grpc::reflection::ProtoServerReflectionPlugin>());
+  }
+
+ private:
+  bool enabled_;
+};
 
 }  // namespace
 
@@ -66,8 +82,9 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
   service_ = std::make_unique<GradientService>(*store_, *jobs_, *cache_, auth_, options_.limits);
 
   grpc::EnableDefaultHealthCheckService(true);
-  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
+  // Off by default: reflection lists every method and the whole model schema to anyone.
+  builder.SetOption(std::make_unique<ReflectionOption>(options_.reflection));
   // gRPC sets SO_REUSEPORT by default: a second server on a port in use would start and share
   // the calls with the first.
   builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
