@@ -12,7 +12,8 @@ const char* const kServerUsage =
     "                   [--tls-cert F --tls-key F] [--max-queued N] [--max-particles N]\n"
     "                   [--max-steps N] [--max-message-mb N] [--grace-seconds S]\n"
     "                   [--cache-entries N] [--max-store-mb N] [--max-geometry-points N]\n"
-    "                   [--max-fiber-points N] [--reflection]\n";
+    "                   [--max-fiber-points N] [--reflection]\n"
+    "                   [--umbridge-listen HOST:PORT [--umbridge-model NAME=FILE ...]]\n";
 
 std::vector<std::string> ServerOptions::validate() const {
   std::vector<std::string> errors;
@@ -34,6 +35,21 @@ std::vector<std::string> ServerOptions::validate() const {
   }
   if (!(grace_seconds >= 0.0) || !std::isfinite(grace_seconds)) {
     errors.push_back("--grace-seconds: must be >= 0");
+  }
+  if (!umbridge_listen.empty() && umbridge_listen.find(':') == std::string::npos) {
+    errors.push_back("--umbridge-listen: must be HOST:PORT");
+  }
+  if (umbridge_listen.empty() && !umbridge_models.empty()) {
+    errors.push_back("--umbridge-model: needs --umbridge-listen");
+  }
+  for (std::size_t i = 0; i < umbridge_models.size(); ++i) {
+    const auto& [name, file] = umbridge_models[i];
+    if (name.empty() || file.empty()) errors.push_back("--umbridge-model: must be NAME=FILE");
+    for (std::size_t j = 0; j < i; ++j) {
+      if (umbridge_models[j].first == name) {
+        errors.push_back("--umbridge-model: the name '" + name + "' is given twice");
+      }
+    }
   }
   return errors;
 }
@@ -63,6 +79,12 @@ ServerOptions parse_server_options(const std::vector<std::string>& args) {
     o.max_store_mb = *v;
   }
   o.reflection = a.take_flag("--reflection");
+  if (auto v = a.take_string("--umbridge-listen")) o.umbridge_listen = *v;
+  while (auto v = a.take_string("--umbridge-model")) {
+    const auto eq = v->find('=');
+    if (eq == std::string::npos) throw std::invalid_argument("--umbridge-model: must be NAME=FILE");
+    o.umbridge_models.emplace_back(v->substr(0, eq), v->substr(eq + 1));
+  }
   a.expect_done(0);
   return o;
 }

@@ -124,6 +124,7 @@ int run(const std::vector<std::string>& args) {
     if (terminal) std::fprintf(stderr, "\n");
     pfem::write_results(result, out_dir);
     const auto& s = result.summary;
+    for (const auto& w : s.warnings) std::cerr << "pfem: warning: " << w << "\n";
     if (s.status != pfem::RunStatus::kCompleted) {
       std::cerr << "pfem: " << s.message << " (partial results in " << out_dir << ")\n";
       return 1;
