@@ -173,7 +173,8 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
 
   const int vtk_every = options.vtk_every.value_or(problem.vtk_every);
   std::unique_ptr<VtkSeries> vtk;
-  if (!options.vtk_dir.empty()) vtk = std::make_unique<VtkSeries>(options.vtk_dir);
+  if (!options.vtk_dir.empty())
+    vtk = std::make_unique<VtkSeries>(options.vtk_dir, problem.sensitivity_params, problem.structure_nodes);
 
   auto t0 = Clock::now();
   mesh::FluidMesh mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
@@ -192,7 +193,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
     out.sensitivities.rows.push_back(sample_recorder_sensitivities(problem, nodes, mesh, model));
   };
   record(0.0);
-  if (vtk) vtk->write(0.0, nodes, mesh);
+  if (vtk) vtk->write(0.0, nodes, mesh, model);
 
   for (int n = 1; n <= total_steps; ++n) {
     const bool shortened = short_last && n == total_steps;
@@ -223,7 +224,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
         ++sum.left_domain;
       }
       if (n % problem.record_every == 0 || n == total_steps) record(time);
-      if (vtk && (n % vtk_every == 0 || n == total_steps)) vtk->write(time, nodes, mesh);
+      if (vtk && (n % vtk_every == 0 || n == total_steps)) vtk->write(time, nodes, mesh, model);
       sum.fluid_area_final = fluid_area(mesh, nodes);
       sum.fluid_area_max_drift =
           std::max(sum.fluid_area_max_drift, std::abs(sum.fluid_area_final / sum.fluid_area_initial - 1.0));

@@ -129,7 +129,6 @@ std::vector<FieldError> ModelChecker::run() {
   collect_structure_names();
   if (model_.fluid_regions_size() == 0 && model_.walls_size() == 0) {
     error("model", "is empty: it needs at least one fluid region and one wall");
-    return errors_;
   }
   if (model_.has_thickness()) positive("thickness", model_.thickness());
   if (model_.has_gravity()) {
