@@ -163,6 +163,11 @@ pfem::v1::Job JobManager::cancel(const std::string& id) {
       }
     }
   }
+  if (entry && finished(entry->snapshot().state())) {  // ended, not yet out of the active list
+    throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
+                       "job '" + id + "' has already finished (" +
+                           pfem::v1::JobState_Name(entry->snapshot().state()) + ")");
+  }
   if (entry) {
     store_.request_cancel(id);  // durable before it is acknowledged (kept over a crash)
     entry->user_cancelled = true;
