@@ -127,8 +127,16 @@ std::shared_ptr<JobManager::ActiveJob> JobManager::find_active(const std::string
   return it == active_.end() ? nullptr : it->second;
 }
 
+std::optional<pfem::v1::Job> JobManager::unstored_job(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  const auto it = unstored_.find(id);
+  if (it == unstored_.end()) return std::nullopt;
+  return it->second;
+}
+
 pfem::v1::Job JobManager::get(const std::string& id) {
   if (auto entry = find_active(id)) return entry->snapshot();
+  if (auto job = unstored_job(id)) return *job;
   if (auto job = store_.get_job(id)) return *job;
   throw ServiceError(grpc::StatusCode::NOT_FOUND, "no job '" + id + "'");
 }
@@ -155,10 +163,21 @@ pfem::v1::Job JobManager::cancel(const std::string& id) {
       }
     }
   }
+  if (entry && finished(entry->snapshot().state())) {  // ended, not yet out of the active list
+    throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
+                       "job '" + id + "' has already finished (" +
+                           pfem::v1::JobState_Name(entry->snapshot().state()) + ")");
+  }
   if (entry) {
+    store_.request_cancel(id);  // durable before it is acknowledged (kept over a crash)
     entry->user_cancelled = true;
     entry->cancel = true;
     return entry->snapshot();
+  }
+  if (auto job = unstored_job(id)) {
+    throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
+                       "job '" + id + "' has already finished (" +
+                           pfem::v1::JobState_Name(job->state()) + ")");
   }
   auto job = store_.get_job(id);
   if (!job) throw ServiceError(grpc::StatusCode::NOT_FOUND, "no job '" + id + "'");
@@ -170,7 +189,13 @@ pfem::v1::Job JobManager::cancel(const std::string& id) {
 pfem::v1::Job JobManager::wait_for_change(const std::string& id, std::uint64_t* version,
                                           std::chrono::milliseconds timeout) {
   auto entry = find_active(id);
-  if (!entry) return get(id);
+  if (!entry) {
+    pfem::v1::Job job = get(id);
+    // Not active and not finished (stored RUNNING by a server that could not store its end):
+    // nothing will change here, so wait rather than let the caller spin.
+    if (!finished(job.state())) std::this_thread::sleep_for(timeout);
+    return job;
+  }
   std::unique_lock lock(entry->m);
   entry->cv.wait_for(lock, timeout, [&] {
     return entry->version != *version || finished(entry->job.state());
@@ -291,15 +316,16 @@ void JobManager::run_job(const std::shared_ptr<ActiveJob>& entry) {
     if (!errors.empty()) throw ModelError(errors);
     RunOptions options = to_run_options(request->options(), SensitivityMethod::kNone);
     options.cancel = &entry->cancel;
-    std::optional<std::chrono::steady_clock::time_point> deadline;
-    if (request->has_timeout_seconds()) {
-      deadline = std::chrono::steady_clock::now() +
-                 std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                     std::chrono::duration<double>(request->timeout_seconds()));
-    }
-    options.progress = [entry, deadline](const Progress& p) {
+    // Compared in seconds as doubles: a time point now + 1e10 s overflows the clock's
+    // nanoseconds (the job would be cancelled at its first step).
+    const auto started = std::chrono::steady_clock::now();
+    const std::optional<double> timeout =
+        request->has_timeout_seconds() ? std::optional<double>(request->timeout_seconds())
+                                       : std::nullopt;
+    options.progress = [entry, started, timeout](const Progress& p) {
       entry->update([&](pfem::v1::Job& job) { *job.mutable_progress() = to_proto(p); });
-      if (deadline && std::chrono::steady_clock::now() > *deadline) {
+      if (timeout && std::chrono::duration<double>(std::chrono::steady_clock::now() - started)
+                             .count() > *timeout) {
         entry->timed_out = true;
         entry->cancel = true;
       }
@@ -317,7 +343,7 @@ void JobManager::run_job(const std::shared_ptr<ActiveJob>& entry) {
   // state (GetJob, WatchJob) also finds the stored result.
   try {
     pfem::v1::Job job = entry->snapshot();
-    if (entry->interrupted) {
+    if (entry->interrupted && !entry->user_cancelled) {
       job.set_state(pfem::v1::JOB_STATE_QUEUED);
       job.clear_progress();
       store_.update_job(job, "re-queued: interrupted by a server shutdown");
@@ -360,13 +386,37 @@ void JobManager::run_job(const std::shared_ptr<ActiveJob>& entry) {
           break;
       }
     }
-    store_.finish_job(job, result ? &*result : nullptr, note);
+    try {
+      store_.finish_job(job, result ? &*result : nullptr, note);
+    } catch (const std::exception& e) {
+      store_failed(entry, job, e.what());
+      return;
+    }
     entry->update([&](pfem::v1::Job& j) { j = job; });
   } catch (const std::exception& e) {
-    // The store failed: the job stays as it was stored (RUNNING) and is re-run on restart.
-    std::fprintf(stderr, "pfem-server: cannot store the end of job %s: %s\n", id.c_str(),
-                 e.what());
+    store_failed(entry, entry->snapshot(), e.what());
   }
+}
+
+void JobManager::store_failed(const std::shared_ptr<ActiveJob>& entry, pfem::v1::Job job,
+                              const std::string& why) {
+  // The job ends FAILED naming why, for its watchers and GetJob. Without its result the row
+  // is smaller: storing that may still succeed (a full disk); if it does not, the stored job
+  // stays RUNNING and the next start runs it again, while this server answers FAILED.
+  std::fprintf(stderr, "pfem-server: cannot store the end of job %s: %s\n", job.id().c_str(),
+               why.c_str());
+  job.set_state(pfem::v1::JOB_STATE_FAILED);
+  job.set_finished_unix(now_unix());
+  job.mutable_error()->set_message("the job's end could not be stored: " + why);
+  job.mutable_error()->set_step(job.progress().step());
+  job.mutable_error()->set_time(job.progress().time());
+  try {
+    store_.finish_job(job, nullptr, "failed: " + job.error().message());
+  } catch (const std::exception&) {
+    std::lock_guard lock(mutex_);
+    unstored_[job.id()] = job;
+  }
+  entry->update([&](pfem::v1::Job& j) { j = job; });
 }
 
 void JobManager::begin_drain() {

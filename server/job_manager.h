@@ -19,6 +19,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -57,7 +58,8 @@ class JobManager {
   pfem::v1::Job get(const std::string& id);
 
   // Cancels a queued job at once, or sets a running job's cancel flag (it ends CANCELLED with
-  // its partial result). Throws NOT_FOUND, or FAILED_PRECONDITION when it has finished.
+  // its partial result) once the store has recorded the cancel. Throws NOT_FOUND, or
+  // FAILED_PRECONDITION when it has finished.
   pfem::v1::Job cancel(const std::string& id);
 
   // Waits up to `timeout` for the job to change after *version, then returns it and sets
@@ -86,6 +88,11 @@ class JobManager {
   void run_job(const std::shared_ptr<ActiveJob>& entry);
   void run_eval(const std::shared_ptr<EvalTask>& task);
   std::shared_ptr<ActiveJob> find_active(const std::string& id);
+  // Ends a job FAILED when its end could not be stored (store_failed) ...
+  void store_failed(const std::shared_ptr<ActiveJob>& entry, pfem::v1::Job job,
+                    const std::string& why);
+  // ... and, when not even that could be stored, the job as this server answers it.
+  std::optional<pfem::v1::Job> unstored_job(const std::string& id);
 
   Store& store_;
   const JobManagerOptions options_;
@@ -96,6 +103,7 @@ class JobManager {
   std::condition_variable idle_cv_;  // a job finished
   std::map<std::string, std::shared_ptr<ActiveJob>> active_;  // queued and running jobs
   std::deque<std::string> queue_;
+  std::map<std::string, pfem::v1::Job> unstored_;  // finished, but the store refused the end
   std::deque<std::shared_ptr<EvalTask>> eval_queue_;
   long running_jobs_ = 0;
   bool draining_ = false;

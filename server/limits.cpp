@@ -4,12 +4,33 @@
 #include <string>
 
 #include "engine/io/model_size.h"
+#include "server/model_cost.h"
 #include "server/status.h"
 
 namespace pfem::server {
 
+void check_model_cost(const pfem::v1::Model& model, const Limits& limits) {
+  const long points = count_geometry_points(model);
+  if (points > limits.max_geometry_points) {
+    throw ServiceError(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                       "max-geometry-points limit exceeded: the walls and fluid polygons have " +
+                           std::to_string(points) + " points, the limit is " +
+                           std::to_string(limits.max_geometry_points));
+  }
+  const long fibers = count_fiber_points(model);
+  if (fibers > limits.max_fiber_points) {
+    throw ServiceError(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                       "max-fiber-points limit exceeded: the fiber beams have " +
+                           std::to_string(fibers) +
+                           " section states (elements x integration points x fibers), the "
+                           "limit is " +
+                           std::to_string(limits.max_fiber_points));
+  }
+}
+
 void check_run_limits(const pfem::v1::Model& model, std::optional<double> t_end,
                       std::optional<double> dt, const Limits& limits) {
+  check_model_cost(model, limits);
   const long particles = estimate_particles(model);
   if (particles > limits.max_particles) {
     throw ServiceError(grpc::StatusCode::RESOURCE_EXHAUSTED,

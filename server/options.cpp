@@ -11,7 +11,8 @@ const char* const kServerUsage =
     "usage: pfem-server --listen HOST:PORT --data-dir DIR [--token-file F] [--workers N]\n"
     "                   [--tls-cert F --tls-key F] [--max-queued N] [--max-particles N]\n"
     "                   [--max-steps N] [--max-message-mb N] [--grace-seconds S]\n"
-    "                   [--cache-entries N]\n"
+    "                   [--cache-entries N] [--max-store-mb N] [--max-geometry-points N]\n"
+    "                   [--max-fiber-points N] [--reflection]\n"
     "                   [--umbridge-listen HOST:PORT [--umbridge-model NAME=FILE ...]]\n";
 
 std::vector<std::string> ServerOptions::validate() const {
@@ -27,6 +28,8 @@ std::vector<std::string> ServerOptions::validate() const {
   if (limits.max_queued < 1) errors.push_back("--max-queued: must be >= 1");
   if (limits.max_particles < 1) errors.push_back("--max-particles: must be >= 1");
   if (limits.max_steps < 1) errors.push_back("--max-steps: must be >= 1");
+  if (limits.max_geometry_points < 1) errors.push_back("--max-geometry-points: must be >= 1");
+  if (limits.max_fiber_points < 1) errors.push_back("--max-fiber-points: must be >= 1");
   if (limits.max_message_mb < 1 || limits.max_message_mb > 2047) {
     errors.push_back("--max-message-mb: must be in [1, 2047]");
   }
@@ -64,11 +67,18 @@ ServerOptions parse_server_options(const std::vector<std::string>& args) {
   if (auto v = a.take_double("--max-particles")) o.limits.max_particles = static_cast<long>(*v);
   if (auto v = a.take_double("--max-steps")) o.limits.max_steps = static_cast<long>(*v);
   if (auto v = a.take_int("--max-message-mb")) o.limits.max_message_mb = *v;
+  if (auto v = a.take_double("--max-geometry-points")) o.limits.max_geometry_points = static_cast<long>(*v);
+  if (auto v = a.take_double("--max-fiber-points")) o.limits.max_fiber_points = static_cast<long>(*v);
   if (auto v = a.take_double("--grace-seconds")) o.grace_seconds = *v;
   if (auto v = a.take_int("--cache-entries")) {
     if (*v < 0) throw std::invalid_argument("--cache-entries: must be >= 0");
     o.cache_entries = static_cast<std::size_t>(*v);
   }
+  if (auto v = a.take_int("--max-store-mb")) {
+    if (*v < 0) throw std::invalid_argument("--max-store-mb: must be >= 0 (0 = no cap)");
+    o.max_store_mb = *v;
+  }
+  o.reflection = a.take_flag("--reflection");
   if (auto v = a.take_string("--umbridge-listen")) o.umbridge_listen = *v;
   while (auto v = a.take_string("--umbridge-model")) {
     const auto eq = v->find('=');

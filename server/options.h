@@ -21,6 +21,8 @@ struct ServerOptions {
   Limits limits;                           // --max-queued, --max-particles, --max-steps, --max-message-mb
   double grace_seconds = 30.0;             // --grace-seconds S: drain time on SIGTERM/SIGINT
   std::size_t cache_entries = 256;         // --cache-entries N: Evaluate runs kept in memory
+  long long max_store_mb = 0;              // --max-store-mb N: cap on the database; 0 = none
+  bool reflection = false;                 // --reflection: serve gRPC reflection (the schema)
   std::string umbridge_listen;             // --umbridge-listen HOST:PORT: UM-Bridge 1.0 HTTP; empty = off
   // --umbridge-model NAME=FILE (repeatable): models served under NAME over UM-Bridge
   std::vector<std::pair<std::string, std::filesystem::path>> umbridge_models;

@@ -5,6 +5,7 @@
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
 #include "server/convert.h"
+#include "server/model_cost.h"
 #include "server/status.h"
 
 namespace pfem::server {
@@ -14,8 +15,10 @@ pfem::v1::Model check_run_request(
     const google::protobuf::RepeatedPtrField<pfem::v1::ParameterValue>& values,
     const pfem::v1::RunOptions& options, const Limits& limits,
     const std::string& options_prefix, std::vector<FieldError> more_errors) {
+  check_model_cost(model, limits);  // before validation, which grows with these counts
   auto errors = apply_parameter_values(model, values);
   for (auto& e : validate_model(model)) errors.push_back(std::move(e));
+  for (auto& e : polygon_errors(model)) errors.push_back(std::move(e));
   for (auto& e : validate_run_options(model, options, options_prefix)) {
     errors.push_back(std::move(e));
   }

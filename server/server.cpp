@@ -2,12 +2,16 @@
 
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/impl/server_builder_option.h>
 
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+
+#include "engine/analysis/blas_threads.h"
+#include "server/malformed_requests.h"
 
 namespace pfem::server {
 namespace {
@@ -19,6 +23,21 @@ std::string read_file(const std::filesystem::path& file, const char* flag) {
   s << in.rdbuf();
   return s.str();
 }
+
+// Reflection for one builder, on or off. Linking grpc++_reflection registers its plugin for
+// every server of the process (a static initializer), so the option also takes it out.
+class ReflectionOption : public grpc::ServerBuilderOption {
+ public:
+  explicit ReflectionOption(bool enabled) : enabled_(enabled) {}
+  void UpdateArguments(grpc::ChannelArguments*) override {}
+  void UpdatePlugins(std::vector<std::unique_ptr<grpc::ServerBuilderPlugin>>* plugins) override {
+    std::erase_if(*plugins, [](const auto& p) { return p->name() == "proto_server_reflection"; });
+    if (enabled_) plugins->push_back(std::make_unique<grpc::reflection::ProtoServerReflectionPlugin>());
+  }
+
+ private:
+  bool enabled_;
+};
 
 }  // namespace
 
@@ -37,28 +56,43 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
     credentials = grpc::SslServerCredentials(ssl);
   }
 
-  try {
-    store_ = std::make_unique<Store>(options_.data_dir);
-  } catch (const StoreError& e) {
-    throw std::runtime_error(std::string("--data-dir: ") + e.what());
-  }
   JobManagerOptions job_options;
   job_options.workers = options_.workers > 0
                             ? options_.workers
                             : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Workers run side by side and each calls the BLAS (pfem::run): a BLAS without locks would
+  // mix their products (different results for identical jobs), so refuse rather than answer
+  // wrongly.
+  if (!run && job_options.workers > 1 && !blas_is_thread_safe()) {
+    throw std::runtime_error(
+        "--workers: " + std::to_string(job_options.workers) +
+        " workers would call the BLAS from several threads at once, but the loaded BLAS (" +
+        blas_description() +
+        ") is not thread-safe: install libopenblas0-pthread (scripts/install-deps) or use "
+        "--workers 1");
+  }
   job_options.max_queued = options_.limits.max_queued;
+  try {
+    store_ = std::make_unique<Store>(options_.data_dir, options_.max_store_mb * 1024 * 1024);
+  } catch (const StoreError& e) {
+    throw std::runtime_error(std::string("--data-dir: ") + e.what());
+  }
   jobs_ = std::make_unique<JobManager>(*store_, job_options, std::move(run));
   cache_ = std::make_unique<ResultCache>(options_.cache_entries);
   service_ = std::make_unique<GradientService>(*store_, *jobs_, *cache_, auth_, options_.limits);
 
   grpc::EnableDefaultHealthCheckService(true);
-  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
+  // Off by default: reflection lists every method and the whole model schema to anyone.
+  builder.SetOption(std::make_unique<ReflectionOption>(options_.reflection));
   // gRPC sets SO_REUSEPORT by default: a second server on a port in use would start and share
   // the calls with the first.
   builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.AddListeningPort(options_.listen, credentials, &port_);
   builder.RegisterService(service_.get());
+  std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors;
+  interceptors.push_back(std::make_unique<MalformedRequestsFactory>());
+  builder.experimental().SetInterceptorCreators(std::move(interceptors));
   const int max_bytes = options_.limits.max_message_mb * 1024 * 1024;
   builder.SetMaxReceiveMessageSize(max_bytes);
   builder.SetMaxSendMessageSize(max_bytes);

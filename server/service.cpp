@@ -6,6 +6,7 @@
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
 #include "server/hashing.h"
+#include "server/model_cost.h"
 #include "server/requests.h"
 #include "server/status.h"
 
@@ -20,7 +21,12 @@ bool finished(pfem::v1::JobState s) {
 }
 
 void require_job_id(const pfem::v1::JobRequest& request) {
+  constexpr std::size_t kMaxJobId = 64;  // ids are 16 hex digits
   if (request.job_id().empty()) throw_invalid({{"job_id", "required"}});
+  if (request.job_id().size() > kMaxJobId) {
+    throw_invalid({{"job_id", "too long (" + std::to_string(request.job_id().size()) +
+                                  " characters; job ids have 16)"}});
+  }
 }
 
 // Streams one column in slices of GradientService::kChunkValues values.
@@ -62,9 +68,16 @@ grpc::Status GradientService::ValidateModel(grpc::ServerContext* context,
                                             const pfem::v1::ValidateModelRequest* request,
                                             pfem::v1::ValidateModelResponse* response) {
   return handle(context, [&] {
-    // Building the model finds more, but only a model within the particle limit is built.
-    const bool buildable = estimate_particles(request->model()) <= limits_.max_particles;
-    for (const auto& e : buildable ? model_errors(request->model()) : validate_model(request->model())) {
+    // Only a model within the cost limits is validated, and only one within the particle
+    // limit too is built (which finds more).
+    check_model_cost(request->model(), limits_);
+    auto errors = polygon_errors(request->model());
+    const bool buildable =
+        errors.empty() && estimate_particles(request->model()) <= limits_.max_particles;
+    for (auto& e : buildable ? model_errors(request->model()) : validate_model(request->model())) {
+      errors.push_back(std::move(e));
+    }
+    for (const auto& e : errors) {
       auto* fe = response->add_errors();
       fe->set_path(e.path);
       fe->set_message(e.message);
@@ -195,7 +208,12 @@ grpc::Status GradientService::ListJobs(grpc::ServerContext* context,
                                        const pfem::v1::ListJobsRequest* request,
                                        pfem::v1::ListJobsResponse* response) {
   return handle(context, [&] {
-    if (request->limit() < 0) throw_invalid({{"limit", "must be >= 0"}});
+    std::vector<FieldError> errors;
+    if (request->limit() < 0) errors.push_back({"limit", "must be >= 0"});
+    if (!pfem::v1::JobState_IsValid(request->state())) {
+      errors.push_back({"state", "unknown job state " + std::to_string(request->state())});
+    }
+    if (!errors.empty()) throw_invalid(errors);
     const int limit = request->limit() == 0 ? 100 : request->limit();
     for (auto& job : store_.list_jobs(request->state(), limit)) {
       if (!finished(job.state())) {

@@ -1,5 +1,6 @@
 #include "server/status.h"
 
+#include <algorithm>
 #include <iostream>
 #include <new>
 
@@ -16,7 +17,9 @@ void throw_invalid(const std::vector<FieldError>& errors) {
   throw ServiceError(grpc::StatusCode::INVALID_ARGUMENT, message);
 }
 
-grpc::Status status_from_current_exception() {
+namespace {
+
+grpc::Status unbounded_status_of_current_exception() {
   try {
     throw;
   } catch (const ServiceError& e) {
@@ -31,7 +34,8 @@ grpc::Status status_from_current_exception() {
     return {grpc::StatusCode::INVALID_ARGUMENT, message};
   } catch (const StoreError& e) {
     std::cerr << "pfem-server: store error: " << e.what() << '\n';
-    return {grpc::StatusCode::INTERNAL, std::string("store: ") + e.what()};
+    return {e.full() ? grpc::StatusCode::RESOURCE_EXHAUSTED : grpc::StatusCode::INTERNAL,
+            std::string("store: ") + e.what()};
   } catch (const std::bad_alloc&) {
     return {grpc::StatusCode::RESOURCE_EXHAUSTED, "out of memory"};
   } catch (const std::exception& e) {
@@ -41,6 +45,37 @@ grpc::Status status_from_current_exception() {
     std::cerr << "pfem-server: internal error (unknown exception)\n";
     return {grpc::StatusCode::INTERNAL, "internal error"};
   }
+}
+
+}  // namespace
+
+std::string bounded_message(const std::string& message) {
+  if (message.size() <= kMaxStatusMessageBytes) return message;
+  const std::size_t total = std::count(message.begin(), message.end(), '\n') + 1;
+  std::string kept;
+  std::size_t lines = 0;
+  for (std::size_t start = 0; start < message.size(); ++lines) {
+    std::size_t end = message.find('\n', start);
+    if (end == std::string::npos) end = message.size();
+    std::string line = message.substr(start, end - start);
+    if (line.size() > kMaxStatusLineBytes) {
+      line = line.substr(0, kMaxStatusLineBytes) + "... (" + std::to_string(line.size()) +
+             " characters)";
+    }
+    if (kept.size() + line.size() + 100 > kMaxStatusMessageBytes) break;
+    kept += (kept.empty() ? "" : "\n") + line;
+    start = end + 1;
+  }
+  if (lines < total) {
+    kept += "\n... and " + std::to_string(total - lines) + " more (" + std::to_string(total) +
+            " in all)";
+  }
+  return kept;
+}
+
+grpc::Status status_from_current_exception() {
+  const grpc::Status status = unbounded_status_of_current_exception();
+  return {status.error_code(), bounded_message(status.error_message())};
 }
 
 grpc::Status guarded(const std::function<grpc::Status()>& body) {

@@ -6,7 +6,8 @@
 // ever crosses into gRPC. Mapping:
 //   ServiceError(code, msg)  -> code, msg
 //   pfem::ModelError         -> INVALID_ARGUMENT, every "path: message", one per line
-//   StoreError               -> INTERNAL "store: ..."
+//   StoreError               -> INTERNAL "store: ...", RESOURCE_EXHAUSTED when full
+//                               (the database or the disk)
 //   std::bad_alloc           -> RESOURCE_EXHAUSTED "out of memory"
 //   anything else            -> INTERNAL (the detail goes to the server log only)
 #include <grpcpp/support/status.h>
@@ -34,7 +35,18 @@ class ServiceError : public std::runtime_error {
 // INVALID_ARGUMENT carrying field errors (message: one "path: message" per line).
 [[noreturn]] void throw_invalid(const std::vector<FieldError>& errors);
 
-// The status of the exception currently being handled (call inside a catch block).
+// The status travels in the response's trailing metadata, which clients cap (8 KiB by
+// default: a longer one fails the call as RESOURCE_EXHAUSTED "received initial metadata size
+// exceeds limit"). Messages are cut to this many bytes, lines to kMaxStatusLineBytes.
+inline constexpr std::size_t kMaxStatusMessageBytes = 4096;
+inline constexpr std::size_t kMaxStatusLineBytes = 300;
+
+// `message` within kMaxStatusMessageBytes: its first lines (each cut to kMaxStatusLineBytes),
+// then "... and N more (M errors in all)".
+std::string bounded_message(const std::string& message);
+
+// The status of the exception currently being handled (call inside a catch block), its
+// message bounded.
 grpc::Status status_from_current_exception();
 
 // Runs body; returns its status, or the converted exception it threw.

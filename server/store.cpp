@@ -4,6 +4,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -22,6 +23,23 @@ std::string serialize(const google::protobuf::MessageLite& message) {
   return bytes;
 }
 
+// The last error on db, marked full when the database or the disk is full.
+StoreError sqlite_error(sqlite3* db, const std::string& where) {
+  return StoreError(std::string(sqlite3_errmsg(db)) + " in: " + where,
+                    sqlite3_errcode(db) == SQLITE_FULL);
+}
+
+// A Job standing in for a stored record that cannot be parsed.
+pfem::v1::Job unreadable_job(const std::string& id, long long state) {
+  pfem::v1::Job job;
+  job.set_id(id);
+  job.set_state(pfem::v1::JobState_IsValid(static_cast<int>(state))
+                    ? static_cast<pfem::v1::JobState>(state)
+                    : pfem::v1::JOB_STATE_FAILED);
+  job.mutable_error()->set_message("stored job record is corrupt");
+  return job;
+}
+
 }  // namespace
 
 // A prepared statement, reset and cleared on every use (RAII over sqlite3_stmt).
@@ -32,7 +50,7 @@ struct Store::Statement {
 
   ~Statement() { sqlite3_finalize(stmt); }
   void check(int rc) const {
-    if (rc != SQLITE_OK) throw StoreError(std::string(sqlite3_errmsg(db)) + " in: " + sql);
+    if (rc != SQLITE_OK) throw sqlite_error(db, sql);
   }
   Statement& reset() {
     sqlite3_reset(stmt);
@@ -65,7 +83,7 @@ struct Store::Statement {
     if (rc == SQLITE_ROW) return true;
     sqlite3_reset(stmt);
     if (rc == SQLITE_DONE) return false;
-    throw StoreError(std::string(sqlite3_errmsg(db)) + " in: " + sql);
+    throw sqlite_error(db, sql);
   }
   void run() {
     while (step()) {
@@ -84,7 +102,7 @@ struct Store::Statement {
   long long column_int(int i) const { return sqlite3_column_int64(stmt, i); }
 };
 
-Store::Store(const std::filesystem::path& data_dir) {
+Store::Store(const std::filesystem::path& data_dir, long long max_bytes) {
   std::error_code ec;
   std::filesystem::create_directories(data_dir, ec);
   if (ec) throw StoreError("cannot create " + data_dir.string() + ": " + ec.message());
@@ -98,6 +116,11 @@ Store::Store(const std::filesystem::path& data_dir) {
                      (error == EWOULDBLOCK ? "" : std::string(": ") + std::strerror(error)));
   }
   const auto file = (data_dir / "pfem.sqlite3").string();
+  if (std::filesystem::exists(file, ec) && std::filesystem::file_size(file, ec) == 0 && !ec) {
+    ::close(lock_fd_);
+    throw StoreError(file + " exists but is empty (0 bytes): its contents were lost. Restore it "
+                     "from a backup, or delete it to start with an empty store");
+  }
   const int rc = sqlite3_open_v2(file.c_str(), &db_,
                                  SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE |
                                      SQLITE_OPEN_FULLMUTEX,
@@ -135,7 +158,23 @@ Store::Store(const std::filesystem::path& data_dir) {
            id TEXT PRIMARY KEY,
            created REAL NOT NULL,
            model BLOB NOT NULL))");
-  exec("PRAGMA user_version=1");  // schema version, for migrations to come
+  // Version 2: jobs.cancel_requested (a client's cancel of a running job, kept over a crash).
+  bool has_cancel_column = false;
+  {
+    auto& q = prepare("SELECT name FROM pragma_table_info('jobs')");
+    while (q.step()) has_cancel_column |= q.column_text(0) == "cancel_requested";
+  }
+  if (!has_cancel_column) {
+    exec("ALTER TABLE jobs ADD COLUMN cancel_requested INTEGER NOT NULL DEFAULT 0");
+  }
+  exec("PRAGMA user_version=2");
+  if (max_bytes > 0) {
+    auto& page = prepare("PRAGMA page_size");
+    page.step();
+    const long long pages = std::max(1LL, max_bytes / std::max(1LL, page.column_int(0)));
+    page.reset();
+    exec(("PRAGMA max_page_count=" + std::to_string(pages)).c_str());
+  }
 }
 
 Store::~Store() {
@@ -145,12 +184,7 @@ Store::~Store() {
 }
 
 void Store::exec(const char* sql) {
-  char* error = nullptr;
-  if (sqlite3_exec(db_, sql, nullptr, nullptr, &error) != SQLITE_OK) {
-    const std::string message = error ? error : "unknown error";
-    sqlite3_free(error);
-    throw StoreError(message + " in: " + sql);
-  }
+  if (sqlite3_exec(db_, sql, nullptr, nullptr, nullptr) != SQLITE_OK) throw sqlite_error(db_, sql);
 }
 
 Store::Statement& Store::prepare(const char* sql) {
@@ -161,7 +195,7 @@ Store::Statement& Store::prepare(const char* sql) {
   s->db = db_;
   s->sql = sql;
   if (sqlite3_prepare_v2(db_, sql, -1, &s->stmt, nullptr) != SQLITE_OK) {
-    throw StoreError(std::string(sqlite3_errmsg(db_)) + " in: " + sql);
+    throw sqlite_error(db_, sql);
   }
   statements_.push_back(std::move(s));
   return *statements_.back();
@@ -182,11 +216,8 @@ class Transaction {
 
  private:
   void run(const char* sql) {
-    char* error = nullptr;
-    if (sqlite3_exec(db_, sql, nullptr, nullptr, &error) != SQLITE_OK) {
-      const std::string message = error ? error : "unknown error";
-      sqlite3_free(error);
-      throw StoreError(message + " in: " + sql);
+    if (sqlite3_exec(db_, sql, nullptr, nullptr, nullptr) != SQLITE_OK) {
+      throw sqlite_error(db_, sql);
     }
   }
   sqlite3* db_;
@@ -249,10 +280,10 @@ void Store::finish_job(const pfem::v1::Job& job, const pfem::v1::Result* result,
 
 std::optional<pfem::v1::Job> Store::get_job(const std::string& id) {
   std::lock_guard lock(mutex_);
-  auto& q = prepare("SELECT job FROM jobs WHERE id = ?").bind(1, id);
+  auto& q = prepare("SELECT job, state FROM jobs WHERE id = ?").bind(1, id);
   if (!q.step()) return std::nullopt;
   pfem::v1::Job job;
-  if (!job.ParseFromString(q.column_blob(0))) throw StoreError("corrupt job " + id);
+  if (!job.ParseFromString(q.column_blob(0))) job = unreadable_job(id, q.column_int(1));
   q.reset();
   return job;
 }
@@ -280,14 +311,15 @@ std::optional<pfem::v1::Result> Store::get_result(const std::string& id) {
 std::vector<pfem::v1::Job> Store::list_jobs(pfem::v1::JobState state, int limit) {
   std::lock_guard lock(mutex_);
   auto& q = state == pfem::v1::JOB_STATE_UNSPECIFIED
-                ? prepare("SELECT job FROM jobs ORDER BY seq DESC LIMIT ?").bind(1, static_cast<long long>(limit))
-                : prepare("SELECT job FROM jobs WHERE state = ? ORDER BY seq DESC LIMIT ?")
+                ? prepare("SELECT job, id, state FROM jobs ORDER BY seq DESC LIMIT ?")
+                      .bind(1, static_cast<long long>(limit))
+                : prepare("SELECT job, id, state FROM jobs WHERE state = ? ORDER BY seq DESC LIMIT ?")
                       .bind(1, static_cast<long long>(state))
                       .bind(2, static_cast<long long>(limit));
   std::vector<pfem::v1::Job> jobs;
   while (q.step()) {
     pfem::v1::Job job;
-    if (!job.ParseFromString(q.column_blob(0))) throw StoreError("corrupt job row");
+    if (!job.ParseFromString(q.column_blob(0))) job = unreadable_job(q.column_text(1), q.column_int(2));
     jobs.push_back(std::move(job));
   }
   q.reset();
@@ -318,21 +350,37 @@ std::vector<std::pair<pfem::v1::JobState, std::string>> Store::job_history(
 std::vector<std::string> Store::recover_queued() {
   std::lock_guard lock(mutex_);
   Transaction tx(db_);
-  std::vector<pfem::v1::Job> interrupted;
+  std::vector<std::pair<pfem::v1::Job, bool>> interrupted;  // (job, cancelled by a client)
   {
-    auto& q = prepare("SELECT job FROM jobs WHERE state = ? ORDER BY seq")
-                  .bind(1, static_cast<long long>(pfem::v1::JOB_STATE_RUNNING));
+    auto& q = prepare(
+                  "SELECT job, id, state, cancel_requested FROM jobs WHERE state = ? OR "
+                  "(state = ? AND cancel_requested = 1) ORDER BY seq")
+                  .bind(1, static_cast<long long>(pfem::v1::JOB_STATE_RUNNING))
+                  .bind(2, static_cast<long long>(pfem::v1::JOB_STATE_QUEUED));
     while (q.step()) {
       pfem::v1::Job job;
-      if (!job.ParseFromString(q.column_blob(0))) throw StoreError("corrupt job row");
-      interrupted.push_back(std::move(job));
+      if (!job.ParseFromString(q.column_blob(0))) {
+        job = unreadable_job(q.column_text(1), pfem::v1::JOB_STATE_FAILED);
+      }
+      interrupted.emplace_back(std::move(job), q.column_int(3) != 0);
     }
     q.reset();
   }
-  for (auto& job : interrupted) {
-    job.set_state(pfem::v1::JOB_STATE_QUEUED);
+  for (auto& [job, cancelled] : interrupted) {
     job.clear_progress();
-    write_job_row(job, "re-queued: the server stopped while it was running");
+    if (job.state() == pfem::v1::JOB_STATE_FAILED) {
+      job.set_finished_unix(now_unix());
+      write_job_row(job, "failed: the stored job record is corrupt");
+    } else if (cancelled) {
+      job.set_state(pfem::v1::JOB_STATE_CANCELLED);
+      job.set_finished_unix(now_unix());
+      job.mutable_error()->set_message(
+          "cancelled by a client (the server stopped before the run ended)");
+      write_job_row(job, "cancelled: requested before the server stopped");
+    } else {
+      job.set_state(pfem::v1::JOB_STATE_QUEUED);
+      write_job_row(job, "re-queued: the server stopped while it was running");
+    }
   }
   std::vector<std::string> ids;
   auto& q = prepare("SELECT id FROM jobs WHERE state = ? ORDER BY seq")
@@ -341,6 +389,20 @@ std::vector<std::string> Store::recover_queued() {
   q.reset();
   tx.commit();
   return ids;
+}
+
+void Store::request_cancel(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(db_);
+  prepare("UPDATE jobs SET cancel_requested = 1 WHERE id = ?").bind(1, id).run();
+  if (sqlite3_changes(db_) != 1) throw StoreError("no job " + id);
+  prepare(
+      "INSERT INTO job_states (job_id, state, at, note) SELECT id, state, ?, ? FROM jobs WHERE id = ?")
+      .bind(1, now_unix())
+      .bind(2, std::string("cancel requested by a client"))
+      .bind(3, id)
+      .run();
+  tx.commit();
 }
 
 void Store::put_model(const std::string& id, const pfem::v1::Model& model) {

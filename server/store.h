@@ -25,15 +25,23 @@ namespace pfem::server {
 
 class StoreError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit StoreError(const std::string& message, bool full = false)
+      : std::runtime_error(message), full_(full) {}
+  // The database or the disk is full (SQLITE_FULL): RESOURCE_EXHAUSTED, not INTERNAL.
+  bool full() const { return full_; }
+
+ private:
+  bool full_;
 };
 
 class Store {
  public:
   // Opens (creating when needed) data_dir/pfem.sqlite3, WAL mode, busy timeout 5 s. One Store
   // at a time owns a data dir (a lock on data_dir/lock): a second server would re-queue and
-  // run the first one's jobs again.
-  explicit Store(const std::filesystem::path& data_dir);
+  // run the first one's jobs again. A database file that exists but is empty (0 bytes: lost
+  // contents) is refused rather than silently started as an empty store. max_bytes > 0 caps
+  // the database (writes past it fail as full, like a full disk).
+  explicit Store(const std::filesystem::path& data_dir, long long max_bytes = 0);
   ~Store();
   Store(const Store&) = delete;
   Store& operator=(const Store&) = delete;
@@ -46,17 +54,24 @@ class Store {
   void finish_job(const pfem::v1::Job& job, const pfem::v1::Result* result,
                   const std::string& note = {});
 
+  // Records a client's cancel of a running job before it is acknowledged: a server that dies
+  // before the run ends finishes the job CANCELLED on its next start instead of re-running it.
+  void request_cancel(const std::string& id);
+  // A Job message that cannot be read comes back as its id and state with the error "stored
+  // job record is corrupt" (its request, when readable, still runs).
   std::optional<pfem::v1::Job> get_job(const std::string& id);
   std::optional<pfem::v1::SubmitJobRequest> get_request(const std::string& id);
   std::optional<pfem::v1::Result> get_result(const std::string& id);
-  // Newest first; state UNSPECIFIED = every state; limit > 0.
+  // Newest first; state UNSPECIFIED = every state; limit > 0. Unreadable rows as in get_job.
   std::vector<pfem::v1::Job> list_jobs(pfem::v1::JobState state, int limit);
   long count_jobs(pfem::v1::JobState state);
   // (state, note) of every logged change of one job, oldest first.
   std::vector<std::pair<pfem::v1::JobState, std::string>> job_history(const std::string& id);
 
-  // Start-up recovery: jobs left RUNNING by a server that died become QUEUED again.
-  // Returns the ids of every QUEUED job, oldest submission first.
+  // Start-up recovery: jobs left RUNNING by a server that died become QUEUED again, or
+  // CANCELLED when a client had cancelled them (queued ones too); RUNNING rows that cannot
+  // be read end FAILED. Returns the ids of
+  // every QUEUED job, oldest submission first.
   std::vector<std::string> recover_queued();
 
   // Models stored by PutModel.

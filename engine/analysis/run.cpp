@@ -5,6 +5,7 @@
 #include <optional>
 #include <set>
 
+#include "engine/analysis/blas_threads.h"
 #include "engine/analysis/simulation.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
@@ -118,6 +119,7 @@ void finite_differences(const pfem::v1::Model& model, const Problem& base, const
 }  // namespace
 
 RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
+  keep_blas_in_calling_thread();  // bit-identical results beside other runs and in any program
   Problem problem = build_problem(model);
   std::vector<const ParameterSpec*> params;
   check_options(options, problem, params);

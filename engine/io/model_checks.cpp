@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <sstream>
@@ -193,8 +194,18 @@ void ModelChecker::check_walls() {
     for (int k = 0; k < w.points_size(); ++k) {
       finite(at(path + ".points", k) + ".x", w.points(k).x());
       finite(at(path + ".points", k) + ".y", w.points(k).y());
-      if (k > 0 && w.points(k).x() == w.points(k - 1).x() && w.points(k).y() == w.points(k - 1).y())
+      // Points closer than 1e-6 h are merged into one wall node by the remesher, which then
+      // fails the run ("constraint needs two different node indices"; seen at 1e-7 h).
+      const double h = model_.mesh().h(),
+                   gap = k == 0 ? 1.0 : std::hypot(w.points(k).x() - w.points(k - 1).x(),
+                                                   w.points(k).y() - w.points(k - 1).y());
+      if (k > 0 && gap == 0.0)
         error(at(path + ".points", k), "repeats the previous point (zero-length segment)");
+      else if (k > 0 && h > 0.0 && std::isfinite(h) && gap < 1e-6 * h) {
+        char text[96];
+        std::snprintf(text, sizeof text, "is only %.3g m from the previous point (less than 1e-6 mesh.h)", gap);
+        error(at(path + ".points", k), std::string(text) + ": merge them");
+      }
       const int next = (k + 1) % w.points_size();
       if (w.slip() && (k + 1 < w.points_size() || w.closed()) && w.points(k).x() != w.points(next).x() &&
           w.points(k).y() != w.points(next).y())

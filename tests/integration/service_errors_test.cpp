@@ -268,12 +268,21 @@ std::string reflection_list(const std::string& address) {
   return bytes;
 }
 
-TEST(ServiceReflection, ListsTheServices) {
+TEST(ServiceReflection, ListsTheServicesWhenEnabled) {
   TempDir dir("reflection");
-  pfem::server::Server server(local_options(dir.path), FakeEngine{}.function());
+  auto options = local_options(dir.path);
+  options.reflection = true;
+  pfem::server::Server server(options, FakeEngine{}.function());
   const std::string listed = reflection_list(server.address());
   EXPECT_NE(listed.find("pfem.v1.GradientService"), std::string::npos);
   EXPECT_NE(listed.find("grpc.health.v1.Health"), std::string::npos);
+}
+
+// Reflection lists every method and the model schema to anyone: off unless --reflection.
+TEST(ServiceReflection, IsOffByDefault) {
+  TempDir dir("no_reflection");
+  pfem::server::Server server(local_options(dir.path), FakeEngine{}.function());
+  EXPECT_EQ(reflection_list(server.address()).find("pfem.v1.GradientService"), std::string::npos);
 }
 
 TEST(ServiceAuth, MissingOrWrongTokensAreUnauthenticatedAndHealthStaysOpen) {

@@ -144,6 +144,32 @@ TEST(ServiceRestart, KillNineThenRestartKeepsResultsAndCompletesTheInterruptedJo
   EXPECT_TRUE(WIFEXITED(second.stop(SIGTERM, 30)));
 }
 
+// A cancel is stored before it is acknowledged: kill -9 right after the answer, and the next
+// start ends the job CANCELLED instead of running it again.
+TEST(ServiceRestart, ACancelAcknowledgedBeforeKillNineStaysCancelled) {
+  TempDir dir("restart_cancel");
+  std::string id;
+  {
+    ServerProcess first(dir.path, 5.0);
+    auto stub = make_stub(first.address());
+    id = submit(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
+    ASSERT_EQ(wait_for_step(*stub, id, 1).state(), pfem::v1::JOB_STATE_RUNNING);
+    grpc::ClientContext context;
+    pfem::v1::JobRequest request;
+    request.set_job_id(id);
+    pfem::v1::Job job;
+    ASSERT_TRUE(stub->CancelJob(&context, request, &job).ok());
+    ASSERT_TRUE(WIFSIGNALED(first.stop(SIGKILL, 10)));
+  }
+  ServerProcess second(dir.path, 5.0);
+  auto stub = make_stub(second.address());
+  const auto job = wait_for_state(*stub, id, pfem::v1::JOB_STATE_CANCELLED, 10);
+  EXPECT_EQ(job.state(), pfem::v1::JOB_STATE_CANCELLED) << pfem::v1::JobState_Name(job.state());
+  EXPECT_EQ(job.attempts(), 1);
+  EXPECT_NE(job.error().message().find("cancelled by a client"), std::string::npos);
+  EXPECT_TRUE(WIFEXITED(second.stop(SIGTERM, 30)));
+}
+
 TEST(ServiceRestart, SigtermDrainsAndTheNextStartCompletesTheJob) {
   TempDir dir("drain");
   std::string id;
