@@ -11,7 +11,8 @@ const char* const kServerUsage =
     "usage: pfem-server --listen HOST:PORT --data-dir DIR [--token-file F] [--workers N]\n"
     "                   [--tls-cert F --tls-key F] [--max-queued N] [--max-particles N]\n"
     "                   [--max-steps N] [--max-message-mb N] [--grace-seconds S]\n"
-    "                   [--cache-entries N]\n";
+    "                   [--cache-entries N] [--health-listen HOST:PORT]\n"
+    "                   [--max-connection-age S]\n";
 
 std::vector<std::string> ServerOptions::validate() const {
   std::vector<std::string> errors;
@@ -32,6 +33,17 @@ std::vector<std::string> ServerOptions::validate() const {
   if (!(grace_seconds >= 0.0) || !std::isfinite(grace_seconds)) {
     errors.push_back("--grace-seconds: must be >= 0");
   }
+  if (!health_listen.empty() && health_listen.find(':') == std::string::npos) {
+    errors.push_back("--health-listen: must be HOST:PORT");
+  }
+  const bool any_port = listen.size() > 2 && listen.compare(listen.size() - 2, 2, ":0") == 0;
+  if (!health_listen.empty() && health_listen == listen && !any_port) {
+    errors.push_back("--health-listen: must differ from --listen");
+  }
+  if (!(max_connection_age_seconds >= 0.0) || !std::isfinite(max_connection_age_seconds) ||
+      max_connection_age_seconds > 2147483.0) {
+    errors.push_back("--max-connection-age: must be in [0, 2147483] seconds (0 = never)");
+  }
   return errors;
 }
 
@@ -49,6 +61,8 @@ ServerOptions parse_server_options(const std::vector<std::string>& args) {
   if (auto v = a.take_double("--max-steps")) o.limits.max_steps = static_cast<long>(*v);
   if (auto v = a.take_int("--max-message-mb")) o.limits.max_message_mb = *v;
   if (auto v = a.take_double("--grace-seconds")) o.grace_seconds = *v;
+  if (auto v = a.take_string("--health-listen")) o.health_listen = *v;
+  if (auto v = a.take_double("--max-connection-age")) o.max_connection_age_seconds = *v;
   if (auto v = a.take_int("--cache-entries")) {
     if (*v < 0) throw std::invalid_argument("--cache-entries: must be >= 0");
     o.cache_entries = static_cast<std::size_t>(*v);

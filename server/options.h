@@ -20,6 +20,13 @@ struct ServerOptions {
   Limits limits;                           // --max-queued, --max-particles, --max-steps, --max-message-mb
   double grace_seconds = 30.0;             // --grace-seconds S: drain time on SIGTERM/SIGINT
   std::size_t cache_entries = 256;         // --cache-entries N: Evaluate runs kept in memory
+  // --health-listen HOST:PORT: a second, plaintext port serving only grpc.health.v1.Health
+  // (no token), for Kubernetes' native gRPC probes; empty = none.
+  std::string health_listen;
+  // --max-connection-age S: connections are asked to go away (GOAWAY) after S seconds, so that
+  // clients balancing over a DNS name re-resolve and find replicas added by scaling; calls in
+  // progress finish first. 0 = never.
+  double max_connection_age_seconds = 0.0;
 
   // "--flag: rule" for every invalid setting; empty when valid.
   std::vector<std::string> validate() const;
