@@ -7,10 +7,12 @@
 // least-squares split of the sensitivity cost of the GMRES solves (P <= 6) into a fixed part per
 // step and a part per parameter, both as fractions of the response, and the LU's at P = 8.
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "engine/analysis/run.h"
+#include "engine/cli/arguments.h"
 #include "engine/io/model_io.h"
 
 namespace {
@@ -34,12 +36,24 @@ pfem::v1::Model obstacle_with_eight_parameters() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const char* usage = "usage: pfem-bench-ddm [--t-end T] [--fdm all|1]\n";
   double t_end = 0.3;
   bool fdm_all = false;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string a = argv[i], v = argv[i + 1];
-    if (a == "--t-end") t_end = std::stod(v);
-    else if (a == "--fdm") fdm_all = v == "all";
+  try {
+    pfem::cli::Arguments a(std::vector<std::string>(argv + 1, argv + argc));
+    if (a.take_flag("--help") || a.take_flag("-h")) {
+      std::printf("%s", usage);
+      return 0;
+    }
+    t_end = a.take_double("--t-end").value_or(t_end);
+    if (!(t_end > 0)) throw std::invalid_argument("--t-end must be > 0");
+    const std::string fdm = a.take_string("--fdm").value_or("1");
+    if (fdm != "all" && fdm != "1") throw std::invalid_argument("--fdm must be all or 1");
+    fdm_all = fdm == "all";
+    a.expect_done(0);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "pfem-bench-ddm: %s\n%s", e.what(), usage);
+    return 2;
   }
   const auto model = obstacle_with_eight_parameters();
   std::vector<std::string> names;

@@ -6,6 +6,7 @@
 //   pfem-bench-engine [--steps N] [h ...]     (default: 100 steps at h = 0.01 0.005 0.0025)
 #include <algorithm>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -30,15 +31,44 @@ void print_row(const char* label, const pfem::RunSummary& s) {
               s.assemble_seconds * per, s.factorize_seconds * per, s.solve_seconds * per, other * per,
               s.status == pfem::RunStatus::kCompleted ? "" : ("  " + s.message).c_str());
 }
+
+const char* kUsage = "usage: pfem-bench-engine [--steps N] [h ...]   (default: 100 steps at h = 0.01 0.005 0.0025)\n";
+
+// A whole-string number > 0, or invalid_argument naming what was given.
+double positive(const std::string& what, const std::string& text) {
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+  }
+  if (used == 0 || used != text.size() || !(v > 0)) throw std::invalid_argument(what + ": '" + text + "' is not a number > 0");
+  return v;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   int steps = 100;
   std::vector<double> spacings;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--steps" && i + 1 < argc) steps = std::stoi(argv[++i]);
-    else spacings.push_back(std::stod(a));
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (a == "--help" || a == "-h") {
+        std::printf("%s", kUsage);
+        return 0;
+      }
+      if (a == "--steps") {
+        if (i + 1 >= argc) throw std::invalid_argument("--steps needs a value");
+        steps = static_cast<int>(positive("--steps", argv[++i]));
+      } else if (!a.empty() && a[0] == '-') {
+        throw std::invalid_argument("unknown option " + a);
+      } else {
+        spacings.push_back(positive("h", a));
+      }
+    }
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "pfem-bench-engine: %s\n%s", e.what(), kUsage);
+    return 2;
   }
   if (spacings.empty()) spacings = {0.01, 0.005, 0.0025};
 

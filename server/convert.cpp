@@ -57,6 +57,9 @@ pfem::v1::Summary to_proto(const RunSummary& s) {
   out.set_substeps(s.substeps);
   out.set_removed_particles(s.removed_particles);
   out.set_inserted_particles(s.inserted_particles);
+  out.set_left_domain(s.left_domain);
+  out.set_fluid_area_max_drift(s.fluid_area_max_drift);
+  for (const auto& w : s.warnings) out.add_warnings(w);
   out.set_particles(s.particles);
   out.set_max_elements(s.max_elements);
   out.set_fluid_area_initial(s.fluid_area_initial);
@@ -92,6 +95,9 @@ RunSummary from_proto(const pfem::v1::Summary& s) {
   out.substeps = s.substeps();
   out.removed_particles = s.removed_particles();
   out.inserted_particles = s.inserted_particles();
+  out.left_domain = s.left_domain();
+  out.fluid_area_max_drift = s.fluid_area_max_drift();
+  out.warnings.assign(s.warnings().begin(), s.warnings().end());
   out.particles = s.particles();
   out.max_elements = s.max_elements();
   out.fluid_area_initial = s.fluid_area_initial();

@@ -1,8 +1,9 @@
 // pfem-server: serves pfem.v1.GradientService (plus grpc.health.v1.Health and reflection).
 //   pfem-server --listen 127.0.0.1:50051 --data-dir /var/lib/pfem [--token-file tokens]
 // Prints "pfem-server listening on HOST:PORT" on stdout once it accepts calls (with
-// --listen HOST:0 the port is chosen by the system), then "pfem-server health on HOST:PORT"
-// with --health-listen. SIGTERM or SIGINT drains it.
+// --listen HOST:0 the port is chosen by the system; with --umbridge-listen, a line
+// "pfem-server UM-Bridge on http://HOST:PORT" comes first), then "pfem-server health on
+// HOST:PORT" with --health-listen. SIGTERM or SIGINT drains it.
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -29,6 +30,9 @@ int main(int argc, char** argv) {
   try {
     const auto options = pfem::server::parse_server_options(args);
     pfem::server::Server server(options);
+    if (!server.umbridge_address().empty()) {
+      std::cout << "pfem-server UM-Bridge on http://" << server.umbridge_address() << std::endl;
+    }
     std::cout << "pfem-server listening on " << server.address() << std::endl;
     if (server.health_port() != 0) {
       const auto& h = options.health_listen;

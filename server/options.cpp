@@ -12,7 +12,8 @@ const char* const kServerUsage =
     "                   [--tls-cert F --tls-key F] [--max-queued N] [--max-particles N]\n"
     "                   [--max-steps N] [--max-message-mb N] [--grace-seconds S]\n"
     "                   [--cache-entries N] [--health-listen HOST:PORT]\n"
-    "                   [--max-connection-age S]\n";
+    "                   [--max-connection-age S]\n"
+    "                   [--umbridge-listen HOST:PORT [--umbridge-model NAME=FILE ...]]\n";
 
 std::vector<std::string> ServerOptions::validate() const {
   std::vector<std::string> errors;
@@ -44,6 +45,21 @@ std::vector<std::string> ServerOptions::validate() const {
       max_connection_age_seconds > 2147483.0) {
     errors.push_back("--max-connection-age: must be in [0, 2147483] seconds (0 = never)");
   }
+  if (!umbridge_listen.empty() && umbridge_listen.find(':') == std::string::npos) {
+    errors.push_back("--umbridge-listen: must be HOST:PORT");
+  }
+  if (umbridge_listen.empty() && !umbridge_models.empty()) {
+    errors.push_back("--umbridge-model: needs --umbridge-listen");
+  }
+  for (std::size_t i = 0; i < umbridge_models.size(); ++i) {
+    const auto& [name, file] = umbridge_models[i];
+    if (name.empty() || file.empty()) errors.push_back("--umbridge-model: must be NAME=FILE");
+    for (std::size_t j = 0; j < i; ++j) {
+      if (umbridge_models[j].first == name) {
+        errors.push_back("--umbridge-model: the name '" + name + "' is given twice");
+      }
+    }
+  }
   return errors;
 }
 
@@ -66,6 +82,12 @@ ServerOptions parse_server_options(const std::vector<std::string>& args) {
   if (auto v = a.take_int("--cache-entries")) {
     if (*v < 0) throw std::invalid_argument("--cache-entries: must be >= 0");
     o.cache_entries = static_cast<std::size_t>(*v);
+  }
+  if (auto v = a.take_string("--umbridge-listen")) o.umbridge_listen = *v;
+  while (auto v = a.take_string("--umbridge-model")) {
+    const auto eq = v->find('=');
+    if (eq == std::string::npos) throw std::invalid_argument("--umbridge-model: must be NAME=FILE");
+    o.umbridge_models.emplace_back(v->substr(0, eq), v->substr(eq + 1));
   }
   a.expect_done(0);
   return o;

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "server/limits.h"
@@ -27,6 +28,9 @@ struct ServerOptions {
   // clients balancing over a DNS name re-resolve and find replicas added by scaling; calls in
   // progress finish first. 0 = never.
   double max_connection_age_seconds = 0.0;
+  std::string umbridge_listen;             // --umbridge-listen HOST:PORT: UM-Bridge 1.0 HTTP; empty = off
+  // --umbridge-model NAME=FILE (repeatable): models served under NAME over UM-Bridge
+  std::vector<std::pair<std::string, std::filesystem::path>> umbridge_models;
 
   // "--flag: rule" for every invalid setting; empty when valid.
   std::vector<std::string> validate() const;

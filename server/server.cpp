@@ -73,6 +73,21 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
     shut_down_ = true;
     throw std::runtime_error("--listen: cannot listen on " + options_.listen);
   }
+  if (!options_.umbridge_listen.empty()) {
+    try {
+      umbridge_models_ = std::make_unique<UmbridgeModels>(options_.umbridge_models, *store_);
+      umbridge_evaluator_ =
+          std::make_unique<Evaluator>(*store_, *jobs_, *cache_, options_.limits);
+      umbridge_ = std::make_unique<UmbridgeServer>(
+          options_.umbridge_listen, *umbridge_evaluator_, *umbridge_models_, auth_,
+          2 * job_options.workers + 2, std::size_t(max_bytes));
+    } catch (...) {
+      server_->Shutdown();
+      jobs_->stop(std::chrono::steady_clock::now());
+      shut_down_ = true;
+      throw;
+    }
+  }
   if (!options_.health_listen.empty()) start_health_server();
   for (grpc::Server* s : {server_.get(), health_server_.get()}) {
     if (!s) continue;
@@ -93,6 +108,7 @@ void Server::start_health_server() {
   if (!health_server_ || health_port_ == 0) {
     server_->Shutdown(std::chrono::system_clock::now());
     server_->Wait();
+    if (umbridge_) umbridge_->stop();
     jobs_->stop(std::chrono::steady_clock::now());
     shut_down_ = true;
     throw std::runtime_error("--health-listen: cannot listen on " + options_.health_listen);
@@ -124,18 +140,22 @@ void Server::shutdown() {
     health->SetServingStatus(pfem::v1::GradientService::service_full_name(), false);
   }
   service_->begin_drain();
+  if (umbridge_) umbridge_->begin_drain();
   jobs_->begin_drain();
   // Let the calls in progress and the running jobs finish within the grace period.
   while (std::chrono::steady_clock::now() < deadline &&
-         (service_->in_flight() > 0 || jobs_->running() > 0)) {
+         (service_->in_flight() > 0 || jobs_->running() > 0 ||
+          (umbridge_ && umbridge_->in_flight() > 0))) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
-  const int calls = service_->in_flight();
+  const int calls = service_->in_flight() + (umbridge_ ? umbridge_->in_flight() : 0);
   const long jobs = jobs_->running();
   // Then cancel what is left: calls end CANCELLED, running jobs are stored as QUEUED.
+  if (umbridge_) umbridge_->cancel_calls();
   server_->Shutdown(std::chrono::system_clock::now());
   jobs_->stop(std::chrono::steady_clock::now());
   server_->Wait();
+  if (umbridge_) umbridge_->stop();  // its calls have ended: their runs were cancelled
   if (health_server_) {
     health_server_->Shutdown(std::chrono::system_clock::now());
     health_server_->Wait();

@@ -14,6 +14,7 @@
 #include "server/result_cache.h"
 #include "server/service.h"
 #include "server/store.h"
+#include "server/umbridge_server.h"
 
 namespace pfem::server {
 
@@ -35,6 +36,8 @@ class Server {
   std::string address() const;
   // The health-only port actually bound (0 without --health-listen).
   int health_port() const { return health_port_; }
+  // "host:port" of the UM-Bridge endpoint (--umbridge-listen); empty when it is off.
+  std::string umbridge_address() const { return umbridge_ ? umbridge_->address() : ""; }
 
   // Drains: health NOT_SERVING, no new jobs, in-flight calls and running jobs get until the
   // grace period ends, then jobs still running are interrupted and stored as QUEUED.
@@ -54,6 +57,9 @@ class Server {
   std::unique_ptr<GradientService> service_;
   std::unique_ptr<grpc::Server> server_;
   std::unique_ptr<grpc::Server> health_server_;  // --health-listen
+  std::unique_ptr<UmbridgeModels> umbridge_models_;
+  std::unique_ptr<Evaluator> umbridge_evaluator_;
+  std::unique_ptr<UmbridgeServer> umbridge_;  // null without --umbridge-listen
   int port_ = 0;
   int health_port_ = 0;
   bool shut_down_ = false;

@@ -5,8 +5,6 @@
 
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
-#include "server/convert.h"
-#include "server/functional.h"
 #include "server/hashing.h"
 #include "server/requests.h"
 #include "server/status.h"
@@ -23,16 +21,6 @@ bool finished(pfem::v1::JobState s) {
 
 void require_job_id(const pfem::v1::JobRequest& request) {
   if (request.job_id().empty()) throw_invalid({{"job_id", "required"}});
-}
-
-FunctionalKind kind_of(pfem::v1::Functional::Kind kind) {
-  switch (kind) {
-    case pfem::v1::Functional::KIND_VALUE_AT: return FunctionalKind::kValueAt;
-    case pfem::v1::Functional::KIND_MAX: return FunctionalKind::kMax;
-    case pfem::v1::Functional::KIND_MIN: return FunctionalKind::kMin;
-    case pfem::v1::Functional::KIND_MAX_ABS: return FunctionalKind::kMaxAbs;
-    default: return FunctionalKind::kFinal;
-  }
 }
 
 // Streams one column in slices of GradientService::kChunkValues values.
@@ -238,92 +226,14 @@ grpc::Status GradientService::PutModel(grpc::ServerContext* context,
 grpc::Status GradientService::Evaluate(grpc::ServerContext* context,
                                        const pfem::v1::EvaluateRequest* request,
                                        pfem::v1::EvaluateResponse* response) {
-  const auto started = Clock::now();
   return handle(context, [&] {
-    pfem::v1::Model model;
-    switch (request->source_case()) {
-      case pfem::v1::EvaluateRequest::kModel:
-        model = request->model();
-        break;
-      case pfem::v1::EvaluateRequest::kModelId: {
-        auto stored = store_.get_model(request->model_id());
-        if (!stored) {
-          throw ServiceError(grpc::StatusCode::NOT_FOUND,
-                             "no model '" + request->model_id() + "' (store it with PutModel)");
-        }
-        model = std::move(*stored);
-        break;
-      }
-      default:
-        throw_invalid({{"model", "required (or model_id)"}});
-    }
-    pfem::v1::RunOptions options;
-    if (request->has_t_end()) options.set_t_end(request->t_end());
-    if (request->has_dt()) options.set_dt(request->dt());
-    if (request->has_fdm_eps()) options.set_fdm_eps(request->fdm_eps());
-    options.set_sensitivity(request->sensitivity() == pfem::v1::SENSITIVITY_METHOD_UNSPECIFIED
-                                ? pfem::v1::SENSITIVITY_METHOD_DDM
-                                : request->sensitivity());
-    *options.mutable_params() = request->params();
-
-    auto functional_errors = check_functionals(model, request->functionals());
-    model = check_run_request(std::move(model), request->parameter_values(), options, limits_,
-                              "", std::move(functional_errors));
-    const std::string key =
-        sha256_hex(canonical_bytes(model) + '\n' + canonical_bytes(options));
     const auto deadline = context->deadline();
     const auto should_stop = [context, deadline] {
       if (context->IsCancelled()) return grpc::StatusCode::CANCELLED;
       if (std::chrono::system_clock::now() > deadline) return grpc::StatusCode::DEADLINE_EXCEEDED;
       return grpc::StatusCode::OK;
     };
-    const auto compute = [&] {
-      return jobs_.run_now(model, to_run_options(options, SensitivityMethod::kDdm), should_stop);
-    };
-    bool hit = false;
-    const auto result = request->no_cache()
-                            ? std::make_shared<const RunResult>(compute())
-                            : cache_.get_or_compute(key, compute, &hit);
-    const auto& summary = result->summary;
-    if (summary.status == RunStatus::kCancelled) {
-      throw ServiceError(grpc::StatusCode::CANCELLED, "the run was cancelled: " + summary.message);
-    }
-    if (summary.status == RunStatus::kFailed) {
-      throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
-                         "the simulation failed at step " + std::to_string(summary.failed_step) +
-                             " (t = " + std::to_string(summary.failed_time) +
-                             " s): " + summary.message);
-    }
-    const std::vector<std::string>& params = summary.parameters;
-    const bool with_gradient = options.sensitivity() != pfem::v1::SENSITIVITY_METHOD_NONE;
-    const std::vector<std::string> no_params;
-    for (int i = 0; i < request->functionals_size(); ++i) {
-      const auto& f = request->functionals(i);
-      FunctionalSpec spec{f.recorder(), kind_of(f.kind()), f.time()};
-      FunctionalValue v;
-      try {
-        v = evaluate_functional(result->responses, result->sensitivities,
-                                with_gradient ? params : no_params, spec);
-      } catch (const FunctionalError& e) {
-        throw_invalid({{"functionals[" + std::to_string(i) + "]." + e.field(), e.what()}});
-      }
-      auto* out = response->add_values();
-      out->set_name(f.name().empty() ? f.recorder() + ":" + functional_kind_name(spec.kind)
-                                     : f.name());
-      out->set_value(v.value);
-      out->set_time(v.time);
-      out->mutable_gradient()->Assign(v.gradient.begin(), v.gradient.end());
-    }
-    if (with_gradient) {
-      for (const auto& p : params) response->add_parameters(p);
-    }
-    response->mutable_parameter_values()->Assign(summary.parameter_values.begin(),
-                                                 summary.parameter_values.end());
-    response->set_cached(hit);
-    response->set_run_key(key);
-    *response->mutable_summary() = to_proto(summary);
-    response->set_wall_seconds(
-        std::chrono::duration<double>(Clock::now() - started).count());
+    evaluator_.evaluate(*request, should_stop, response);
     return grpc::Status::OK;
   });
 }

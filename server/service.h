@@ -9,6 +9,7 @@
 
 #include "pfem/v1/service.grpc.pb.h"
 #include "server/auth.h"
+#include "server/evaluator.h"
 #include "server/job_manager.h"
 #include "server/limits.h"
 #include "server/result_cache.h"
@@ -21,7 +22,11 @@ class GradientService final : public pfem::v1::GradientService::Service {
   // All references must outlive the service.
   GradientService(Store& store, JobManager& jobs, ResultCache& cache, const TokenAuth& auth,
                   const Limits& limits)
-      : store_(store), jobs_(jobs), cache_(cache), auth_(auth), limits_(limits) {}
+      : store_(store),
+        jobs_(jobs),
+        auth_(auth),
+        limits_(limits),
+        evaluator_(store, jobs, cache, limits) {}
 
   grpc::Status ValidateModel(grpc::ServerContext* context,
                              const pfem::v1::ValidateModelRequest* request,
@@ -57,9 +62,9 @@ class GradientService final : public pfem::v1::GradientService::Service {
 
   Store& store_;
   JobManager& jobs_;
-  ResultCache& cache_;
   const TokenAuth& auth_;
   const Limits& limits_;
+  const Evaluator evaluator_;  // Evaluate (shared with the UM-Bridge endpoint)
   std::atomic<bool> draining_{false};
   std::atomic<int> in_flight_{0};
 };

@@ -362,4 +362,13 @@ std::optional<pfem::v1::Model> Store::get_model(const std::string& id) {
   return model;
 }
 
+std::vector<std::string> Store::model_ids() {
+  std::lock_guard lock(mutex_);
+  auto& q = prepare("SELECT id FROM models ORDER BY created, id");
+  std::vector<std::string> ids;
+  while (q.step()) ids.push_back(q.column_text(0));
+  q.reset();
+  return ids;
+}
+
 }  // namespace pfem::server

@@ -62,6 +62,8 @@ class Store {
   // Models stored by PutModel.
   void put_model(const std::string& id, const pfem::v1::Model& model);
   std::optional<pfem::v1::Model> get_model(const std::string& id);
+  // Ids of every stored model, oldest first.
+  std::vector<std::string> model_ids();
 
  private:
   struct Statement;

@@ -151,8 +151,11 @@ std::string summary_text(const Problem& problem, const AnalysisResult& result,
   if (!f.converged) out << "      " << f.message << "\n";
   if (result.simulations) {
     const SimulationStats& s = *result.simulations;
-    out << "      " << s.simulations << " PFEM simulations for " << s.evaluations << " evaluations ("
-        << s.gradient_evaluations << " with gradients";
+    // The model's evaluations include those made after FORM (SORM's curvatures, sampling).
+    out << "      " << s.simulations << " PFEM simulations for " << s.evaluations << " evaluations of the model (";
+    if (s.evaluations > f.evaluations)
+      out << f.evaluations << " by FORM, " << s.evaluations - f.evaluations << " after it by SORM or sampling; ";
+    out << s.gradient_evaluations << " with gradients";
     if (s.cached > 0) out << ", " << s.cached << " answered from the server's cache";
     if (s.retries > 0) out << ", " << s.retries << " calls retried after UNAVAILABLE";
     out << "), " << fmt("%.1f", s.seconds) << " s in the simulations\n";

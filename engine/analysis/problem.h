@@ -8,6 +8,7 @@
 
 #include "engine/fluid/mini_element.h"
 #include "engine/fluid/mini_sensitivity.h"
+#include "engine/mesh/contact_line.h"
 #include "engine/solve/node_state.h"
 #include "engine/structure/structure_model.h"
 
@@ -26,6 +27,7 @@ struct RecorderSpec {
   int component = 0;     // basic force: 0 = N, 1 = M_i, 2 = M_j
   int section_point = 0;  // fiber quantities: integration point and fiber (0 at the -y face)
   int fiber = 0;
+  double x = 0.0, y = 0.0;  // the point of a point quantity (pressure, wave_gauge)
 };
 
 struct ParameterSpec {
@@ -51,8 +53,15 @@ struct Problem {
   int record_every = 1;
   int vtk_every = 10;
   Box domain;
+  bool fail_on_exit = false;  // domain.on_exit == "fail"
   NodeState nodes;
   std::vector<std::array<std::int32_t, 2>> wall_segments;  // node pairs of every wall piece
+  // Wall nodes that slide to the contact line (mesh/contact_line.h), and per node the indices
+  // into it of the sliding nodes at and next to it (empty for other nodes).
+  std::vector<mesh::SlidingWallNode> sliding_walls;
+  // Per node: 0, or the one free velocity component of a slip wall's node (StepSettings::slip).
+  std::vector<std::uint8_t> wall_slip;
+  std::vector<std::vector<int>> wall_neighbours;
   std::vector<std::array<std::int32_t, 2>> beam_segments;  // node pairs of every beam element
   std::optional<structure::StructureModel> structure;     // with its nodes in `nodes`:
   std::vector<int> structure_nodes;                        // node index of each structure node

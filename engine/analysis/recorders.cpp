@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/analysis/field_probes.h"
 #include "engine/fluid/mini_element.h"
 #include "engine/structure/disp_beam_column.h"
 #include "engine/structure/fiber_section.h"
@@ -74,6 +75,8 @@ std::vector<double> sample_recorders(const Problem& problem, const NodeState& no
     else if (r.quantity == "rz") value = nodes.rz[i];
     else if (r.element >= 0 && structure) value = element_value(r, *structure);
     else if (r.quantity == "fluid_area") value = fluid_area(mesh, nodes);
+    else if (r.quantity == "wave_gauge") value = wave_gauge(mesh, nodes, r.x);
+    else if (r.quantity == "pressure") value = pressure_at(mesh, nodes, r.x, r.y);
     else if (r.quantity == "front_x" || r.quantity == "front_y") {
       const bool use_x = r.quantity == "front_x";
       const int front = fluid_extreme(nodes, mesh, use_x);
@@ -121,6 +124,10 @@ std::vector<double> sample_recorder_sensitivities(const Problem& problem, const 
             value += 0.5 * (g.c[a] * d[NodeState::kDx] + g.d[a] * d[NodeState::kDy]);
           }
         }
+      } else if (r.quantity == "wave_gauge") {
+        value = wave_gauge(mesh, nodes, r.x, k);
+      } else if (r.quantity == "pressure") {
+        value = pressure_at(mesh, nodes, r.x, r.y, k);
       } else if (fast >= 0) {
         const double* d = nodes.sensitivity(fast, k);
         value = (nodes.vx[fast] * d[NodeState::kDvx] + nodes.vy[fast] * d[NodeState::kDvy]) /

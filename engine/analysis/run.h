@@ -27,6 +27,8 @@ struct Progress {
 };
 
 inline constexpr int kMaxThreads = 256;
+// A run whose fluid area drifts further than this from its initial value gets a warning.
+inline constexpr double kAreaDriftWarning = 0.02;
 
 struct RunOptions {
   std::optional<double> t_end;  // overrides analysis.t_end
@@ -73,6 +75,9 @@ struct RunSummary {
   int substeps = 0;         // steps split in halves after a failed Newton solve
   int removed_particles = 0;   // taken out for coming too close to another node, or for crossing a wall
   int inserted_particles = 0;  // added in the middle of stretched edges
+  int left_domain = 0;         // removed for leaving the domain (domain.on_exit "remove")
+  double fluid_area_max_drift = 0.0;  // largest |A(t)/A(0) - 1| over the recorded steps
+  std::vector<std::string> warnings;  // e.g. the fluid area drifted by more than kAreaDriftWarning
   int particles = 0;
   int max_elements = 0;
   double fluid_area_initial = 0.0;

@@ -1,5 +1,6 @@
 #include "engine/analysis/simulation.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -39,8 +40,36 @@ void add_work(RunSummary& sum, const StepReport& r) {
   sum.removed_particles += r.removed_particles;
 }
 
-// Remeshes nodes after the step that used previous (see RemeshOptions::previous_boundary).
-mesh::FluidMesh remesh_after(const mesh::FluidMesh& previous, const NodeState& nodes, mesh::RemeshOptions options) {
+// The wall nodes at the contact lines of previous slide to them, every other sliding node goes
+// home (mesh/contact_line.h); a slid node's position follows its particle's, and so does its
+// position sensitivity: the tangential part of the particle's.
+void slide_walls(const Problem& problem, const mesh::FluidMesh& previous, NodeState& nodes) {
+  for (const auto& s : problem.sliding_walls) {
+    nodes.x[s.node] = s.home_x, nodes.y[s.node] = s.home_y;
+    for (int k = 0; k < nodes.num_params; ++k)
+      nodes.sensitivity(s.node, k)[NodeState::kDx] = nodes.sensitivity(s.node, k)[NodeState::kDy] = 0.0;
+  }
+  for (const auto& slide : mesh::contact_line_slides(previous, nodes.x, nodes.y, problem.sliding_walls,
+                                                      problem.wall_neighbours)) {
+    const auto it = std::find_if(problem.sliding_walls.begin(), problem.sliding_walls.end(),
+                                 [&](const mesh::SlidingWallNode& s) { return s.node == slide.node; });
+    const double tx = it->tx, ty = it->ty;
+    nodes.x[slide.node] = it->home_x + slide.offset * tx;
+    nodes.y[slide.node] = it->home_y + slide.offset * ty;
+    for (int k = 0; k < nodes.num_params; ++k) {
+      const double* dp = nodes.sensitivity(slide.particle, k);
+      double* dw = nodes.sensitivity(slide.node, k);
+      const double along = dp[NodeState::kDx] * tx + dp[NodeState::kDy] * ty;
+      dw[NodeState::kDx] = along * tx, dw[NodeState::kDy] = along * ty;
+    }
+  }
+}
+
+// Remeshes nodes after the step that used previous (see RemeshOptions::previous_boundary), with
+// the wall nodes slid to its contact lines first.
+mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& previous, NodeState& nodes,
+                             mesh::RemeshOptions options) {
+  slide_walls(problem, previous, nodes);
   std::vector<std::uint8_t> boundary(previous.free_surface.size());
   for (std::size_t i = 0; i < boundary.size(); ++i)
     boundary[i] = previous.free_surface[i] || (nodes.kind[i] == mesh::NodeKind::Fluid && !previous.in_mesh[i]);
@@ -52,7 +81,7 @@ mesh::FluidMesh remesh_after(const mesh::FluidMesh& previous, const NodeState& n
 // step), retries as two half steps, removing too close particles (as between steps; see
 // particle_spacing.h) and remeshing in between. Returns the Newton iterations of the
 // last attempt; the work of every attempt, failed ones included, goes into sum.
-int advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings settings,
+int advance_adaptive(const Problem& problem, UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings settings,
                      const mesh::RemeshOptions& remesh_options, NodeState& nodes,
                      double removal_distance, const std::atomic<bool>* cancel, RunSummary& sum,
                      int depth = 0) {
@@ -73,10 +102,10 @@ int advance_adaptive(UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings sett
       const auto t0 = Clock::now();
       // Particles squeezed together in the first half would only come closer in a shorter step.
       sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind, removal_distance);
-      mesh = remesh_after(mesh, nodes, remesh_options);
+      mesh = remesh_after(problem, mesh, nodes, remesh_options);
       sum.remesh_seconds += since(t0);
     }
-    iterations = advance_adaptive(step, mesh, settings, remesh_options, nodes, removal_distance, cancel, sum,
+    iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, nodes, removal_distance, cancel, sum,
                                   depth + 1);
   }
   return iterations;
@@ -135,6 +164,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   settings.gy = problem.gy;
   settings.threads = options.threads;
   settings.walls = constraints;  // beams too: they move little within a step
+  settings.slip = problem.wall_slip;
   if (problem.unified_fractional_step) settings.formulation = StepSettings::Formulation::kGlobalBubble;
   if (structure) settings.structure = {&*structure, problem.structure_nodes, problem.structure_self_weight};
   settings.sensitivity = problem.fluid_seeds;
@@ -143,10 +173,15 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
 
   const int vtk_every = options.vtk_every.value_or(problem.vtk_every);
   std::unique_ptr<VtkSeries> vtk;
-  if (!options.vtk_dir.empty()) vtk = std::make_unique<VtkSeries>(options.vtk_dir);
+  if (!options.vtk_dir.empty())
+    vtk = std::make_unique<VtkSeries>(options.vtk_dir, problem.sensitivity_params, problem.structure_nodes);
 
   auto t0 = Clock::now();
   mesh::FluidMesh mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
+  if (!problem.sliding_walls.empty()) {
+    slide_walls(problem, mesh, nodes);
+    mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
+  }
   sum.remesh_seconds += since(t0);
   sum.fluid_area_initial = sum.fluid_area_final = fluid_area(mesh, nodes);
   const structure::StructureModel* model = structure ? &*structure : nullptr;
@@ -158,7 +193,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
     out.sensitivities.rows.push_back(sample_recorder_sensitivities(problem, nodes, mesh, model));
   };
   record(0.0);
-  if (vtk) vtk->write(0.0, nodes, mesh);
+  if (vtk) vtk->write(0.0, nodes, mesh, model);
 
   for (int n = 1; n <= total_steps; ++n) {
     const bool shortened = short_last && n == total_steps;
@@ -172,21 +207,27 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
     try {
       if (n > 1) {  // the step-1 mesh is the initial one
         t0 = Clock::now();
-        mesh = remesh_after(mesh, nodes, remesh_options);
+        mesh = remesh_after(problem, mesh, nodes, remesh_options);
         sum.remesh_seconds += since(t0);
       }
-      const int iterations = advance_adaptive(step, mesh, settings, remesh_options, nodes,
+      const int iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, nodes,
                                               problem.removal_distance * problem.h, options.cancel, sum);
       sum.max_elements = std::max<int>(sum.max_elements, static_cast<int>(mesh.triangles.size()));
       sum.steps = n;
-      if (const int i = node_outside(nodes, problem.domain); i >= 0) {
-        std::ostringstream msg;
-        msg << "particle " << i << " left the domain at (" << nodes.x[i] << ", " << nodes.y[i] << ")";
-        throw StepFailure(msg.str());
+      for (int i; (i = node_outside(nodes, problem.domain)) >= 0;) {
+        if (problem.fail_on_exit) {
+          std::ostringstream msg;
+          msg << "particle " << i << " left the domain at (" << nodes.x[i] << ", " << nodes.y[i] << ")";
+          throw StepFailure(msg.str());
+        }
+        nodes.kind[i] = mesh::NodeKind::Removed;  // is_fixed from now on: node_outside skips it
+        ++sum.left_domain;
       }
       if (n % problem.record_every == 0 || n == total_steps) record(time);
-      if (vtk && (n % vtk_every == 0 || n == total_steps)) vtk->write(time, nodes, mesh);
+      if (vtk && (n % vtk_every == 0 || n == total_steps)) vtk->write(time, nodes, mesh, model);
       sum.fluid_area_final = fluid_area(mesh, nodes);
+      sum.fluid_area_max_drift =
+          std::max(sum.fluid_area_max_drift, std::abs(sum.fluid_area_final / sum.fluid_area_initial - 1.0));
       sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind,
                                                             problem.removal_distance * problem.h);
       sum.inserted_particles += insert_particles(mesh, problem, nodes);
@@ -214,6 +255,14 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
       sum.message = msg.str();
       break;
     }
+  }
+  if (sum.left_domain > 0)
+    sum.warnings.push_back(std::to_string(sum.left_domain) + " particle(s) left the domain and were removed");
+  if (sum.fluid_area_max_drift > kAreaDriftWarning) {
+    char msg[160];
+    std::snprintf(msg, sizeof msg, "the fluid area drifted by up to %.1f %% of its initial value (more than %g %%)",
+                  100.0 * sum.fluid_area_max_drift, 100.0 * kAreaDriftWarning);
+    sum.warnings.push_back(msg);
   }
   sum.wall_seconds = since(start);
   sum.response_seconds = sum.wall_seconds - sum.sensitivity_seconds;

@@ -1,13 +1,19 @@
 // The `pfem` command: run and validate model files (design.md, "Contracts").
 //   pfem run MODEL.json --out DIR [--t-end T] [--dt DT] [--sensitivity none|ddm|fdm]
-//            [--params a,b] [--fdm-eps E] [--vtk-every N] [--vtk] [--threads N]
+//            [--params a,b] [--fdm-eps E] [--vtk-every N] [--vtk] [--threads N] [--progress]
 //   pfem check-gradients MODEL.json [--params a,b] [--t-end T] [--dt DT] [--fdm-eps E]
 //            [--tolerance TOL] [--threads N]
-//   pfem validate MODEL.json
+//   pfem validate MODEL.json     (every error; then warnings and the run's estimated size and time)
+// `pfem run` prints a progress line on stderr when stderr is a terminal (or with --progress);
+// SIGINT or SIGTERM stops it at the end of the step in progress and writes every output with
+// status "cancelled" (a second signal ends it at once).
 // Exit codes: 0 success, 1 simulation failed or cancelled (check-gradients: or a DDM column off
 // the FDM by more than the tolerance), 2 invalid input or usage.
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -21,16 +27,63 @@
 #include "engine/cli/arguments.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
+#include "engine/io/model_warnings.h"
 #include "engine/io/results_io.h"
 
 namespace {
 
 const char* kUsage =
     "usage: pfem run MODEL.json --out DIR [--t-end T] [--dt DT] [--sensitivity none|ddm|fdm]\n"
-    "                [--params a,b] [--fdm-eps E] [--vtk] [--vtk-every N] [--threads N]\n"
+    "                [--params a,b] [--fdm-eps E] [--vtk] [--vtk-every N] [--threads N] [--progress]\n"
     "       pfem check-gradients MODEL.json [--params a,b] [--t-end T] [--dt DT] [--fdm-eps E]\n"
     "                [--tolerance TOL] [--threads N]\n"
     "       pfem validate MODEL.json\n";
+
+// Set by SIGINT/SIGTERM (a lock-free atomic store is async-signal-safe).
+std::atomic<bool> g_stop_requested{false};
+// Where the handler also stops the engine at once, or null: the FDM's perturbed runs have no
+// progress callback that could pass the request on at the end of a step.
+std::atomic<bool>* g_stop_now = nullptr;
+
+extern "C" void on_stop_signal(int signal) {
+  g_stop_requested.store(true);
+  if (g_stop_now) g_stop_now->store(true);
+  std::signal(signal, SIG_DFL);  // a second Ctrl-C ends the process at once
+}
+
+// The progress line: rewritten in place on a terminal (at most 10 times a second), one line a
+// second otherwise; always the last step.
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool terminal) : terminal_(terminal) {}
+  void show(const pfem::Progress& p) {
+    const auto now = std::chrono::steady_clock::now();
+    if (p.step < p.total_steps && now - last_ < std::chrono::milliseconds(terminal_ ? 100 : 1000)) return;
+    last_ = now;
+    std::fprintf(stderr, "%sstep %d/%d  t = %.4f s  newton %d  %.1f s elapsed, %.1f s left%s", terminal_ ? "\r" : "",
+                 p.step, p.total_steps, p.time, p.newton_iterations, p.elapsed_seconds, p.remaining_seconds,
+                 terminal_ ? "   " : "\n");
+    shown_ = true;
+  }
+  void end() const {
+    if (terminal_ && shown_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool terminal_;
+  bool shown_ = false;
+  std::chrono::steady_clock::time_point last_{};
+};
+
+// "42 s", "3.5 min", "2.1 h", "4.0 days".
+std::string duration(double seconds) {
+  char buf[32];
+  if (seconds < 120) std::snprintf(buf, sizeof buf, "%.2g s", seconds);
+  else if (seconds < 7200) std::snprintf(buf, sizeof buf, "%.1f min", seconds / 60);
+  else if (seconds < 172800) std::snprintf(buf, sizeof buf, "%.1f h", seconds / 3600);
+  else std::snprintf(buf, sizeof buf, "%.1f days", seconds / 86400);
+  return buf;
+}
 
 int usage_error(const std::string& message) {
   std::cerr << "pfem: " << message << "\n" << kUsage;
@@ -63,15 +116,21 @@ int with_exit_codes(const std::function<int()>& body) {
   }
 }
 
+// Errors (exit 2), else "valid"; then the warnings and the run's estimated size and time.
 int validate(const std::vector<std::string>& args) {
   if (args.size() != 1) return usage_error("validate takes one model file");
   try {
     const auto model = pfem::read_model_file(args[0]);
     const auto errors = pfem::model_errors(model);
     for (const auto& e : errors) std::cerr << e.to_string() << "\n";
-    if (!errors.empty()) return 2;
-    std::cout << args[0] << ": valid\n";
-    return 0;
+    if (errors.empty()) std::cout << args[0] << ": valid\n";
+    if (errors.empty())
+      for (const auto& w : pfem::model_warnings(model)) std::cerr << "warning: " << w.to_string() << "\n";
+    if (const auto e = pfem::estimate_run(model); e.particles > 0 && e.steps > 0)
+      std::printf("estimate: %ld particles, about %ld elements, %ld steps, about %s (response only, 1 thread, "
+                  "at %.2g us per particle and step measured here)\n",
+                  e.particles, e.elements, e.steps, duration(e.seconds).c_str(), e.seconds_per_particle_step * 1e6);
+    return errors.empty() ? 0 : 2;
   } catch (const pfem::ModelError& e) {
     for (const auto& err : e.errors()) std::cerr << err.to_string() << "\n";
     return 2;
@@ -82,7 +141,7 @@ int run(const std::vector<std::string>& args) {
   pfem::cli::Arguments a(args);
   pfem::RunOptions options;
   std::string out_dir;
-  bool vtk = false;
+  bool vtk = false, show_progress = false;
   try {
     out_dir = a.take_string("--out").value_or("");
     options.t_end = a.take_double("--t-end");
@@ -98,6 +157,7 @@ int run(const std::vector<std::string>& args) {
     if (auto v = a.take_int("--vtk-every")) options.vtk_every = *v, vtk = true;
     vtk = a.take_flag("--vtk") || vtk;
     if (auto t = a.take_int("--threads")) options.threads = *t;
+    show_progress = a.take_flag("--progress");
     a.expect_done(1);
   } catch (const std::invalid_argument& e) {
     return usage_error(e.what());
@@ -112,18 +172,25 @@ int run(const std::vector<std::string>& args) {
   if (vtk) options.vtk_dir = out_dir + "/vtk";
 
   const bool terminal = isatty(fileno(stderr));
-  if (terminal) {
-    options.progress = [](const pfem::Progress& p) {
-      std::fprintf(stderr, "\rstep %d/%d  t = %.4f s  newton %d  %.1f s elapsed, %.1f s left   ",
-                   p.step, p.total_steps, p.time, p.newton_iterations, p.elapsed_seconds, p.remaining_seconds);
-    };
-  }
+  show_progress = show_progress || terminal;
+  ProgressLine line(terminal);
+  std::atomic<bool> cancel{false};
+  options.cancel = &cancel;
+  // The request takes effect when the step in progress ends: the callback runs after every step.
+  options.progress = [&](const pfem::Progress& p) {
+    if (g_stop_requested.load()) cancel.store(true);
+    if (show_progress) line.show(p);
+  };
+  if (options.sensitivity == pfem::SensitivityMethod::kFdm) g_stop_now = &cancel;
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
   return with_exit_codes([&] {
     const auto model = pfem::read_model_file(a.positional(0));
     const pfem::RunResult result = pfem::run(model, options);
-    if (terminal) std::fprintf(stderr, "\n");
+    line.end();
     pfem::write_results(result, out_dir);
     const auto& s = result.summary;
+    for (const auto& w : s.warnings) std::cerr << "pfem: warning: " << w << "\n";
     if (s.status != pfem::RunStatus::kCompleted) {
       std::cerr << "pfem: " << s.message << " (partial results in " << out_dir << ")\n";
       return 1;

@@ -9,7 +9,15 @@ TriangleGeometry triangle_geometry(const std::array<double, 3>& x, const std::ar
   g.A = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
   g.c = {y[1] - y[2], y[2] - y[0], y[0] - y[1]};
   g.d = {x[2] - x[1], x[0] - x[2], x[1] - x[0]};
+  g.Am = g.A, g.cm = g.c, g.dm = g.d;
   return g;
+}
+
+void continuity_at_midpoint(TriangleGeometry& g, const std::array<double, 3>& xn, const std::array<double, 3>& yn) {
+  const TriangleGeometry n = triangle_geometry(xn, yn);
+  // c, d are linear in the coordinates; A is quadratic, so it is computed at the midpoint.
+  for (int a = 0; a < 3; ++a) g.cm[a] = 0.5 * (g.c[a] + n.c[a]), g.dm[a] = 0.5 * (g.d[a] + n.d[a]);
+  g.Am = g.cm[1] * g.dm[2] - g.cm[2] * g.dm[1];  // (x2 - x1)(y3 - y1) - (x3 - x1)(y2 - y1) at the midpoint
 }
 
 void mini_matrices(const TriangleGeometry& g, const FluidConstants& f, double t, double bx,
@@ -53,16 +61,20 @@ void mini_matrices(const TriangleGeometry& g, const FluidConstants& f, double t,
   out.K(7, 7) = k4 * (4.0 * dd + 3.0 * cc);
 
   // Gradient (61): G_ab = [c_a, d_a]/6, G_4b = -9/40 [c_b, d_b].
-  for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) {
-      out.G(2 * a, b) = c[a] / 6.0 * t;
-      out.G(2 * a + 1, b) = d[a] / 6.0 * t;
+  const auto gradient = [t](const std::array<double, 3>& gc, const std::array<double, 3>& gd, Mat83& G) {
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) {
+        G(2 * a, b) = gc[a] / 6.0 * t;
+        G(2 * a + 1, b) = gd[a] / 6.0 * t;
+      }
     }
-  }
-  for (int b = 0; b < 3; ++b) {
-    out.G(6, b) = -9.0 / 40.0 * c[b] * t;
-    out.G(7, b) = -9.0 / 40.0 * d[b] * t;
-  }
+    for (int b = 0; b < 3; ++b) {
+      G(6, b) = -9.0 / 40.0 * gc[b] * t;
+      G(7, b) = -9.0 / 40.0 * gd[b] * t;
+    }
+  };
+  gradient(c, d, out.G);
+  gradient(g.cm, g.dm, out.Gc);
 
   // Body force (62) and lumped pressure mass (63).
   const double fc = f.rho * A / 6.0 * t, f4 = 9.0 * f.rho * A / 40.0 * t;
@@ -72,7 +84,7 @@ void mini_matrices(const TriangleGeometry& g, const FluidConstants& f, double t,
   }
   out.F(6) = f4 * bx;
   out.F(7) = f4 * by;
-  out.Mp.setConstant(A / (6.0 * f.kappa) * t);
+  out.Mp.setConstant(g.Am / (6.0 * f.kappa) * t);
 }
 
 }  // namespace pfem::fluid

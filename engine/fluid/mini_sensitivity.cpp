@@ -8,7 +8,7 @@ ElementResidual element_residual(const MiniMatrices& m, double dt, const Element
   // Coefficient-based products: for 8x8 blocks Eigen's general matrix-vector kernel costs more
   // than the arithmetic (this runs for every element at every Newton iteration).
   return {m.F - m.M.lazyProduct((s.v - s.vn) / dt) - m.K.lazyProduct(s.v) + m.G.lazyProduct(s.p),
-          -m.Mp.cwiseProduct(s.p - s.pn) / dt - m.G.transpose().lazyProduct(s.v)};
+          -m.Mp.cwiseProduct(s.p - s.pn) / dt - m.Gc.transpose().lazyProduct(s.v)};
 }
 
 DirectResidual element_residual(const TriangleGeometry& g, const FluidConstants& f, double t, double bx, double by,
@@ -26,12 +26,14 @@ DirectResidual element_residual(const TriangleGeometry& g, const FluidConstants&
   const double fc = f.rho * A / 6.0 * t, f4 = 9.0 * f.rho * A / 40.0 * t;
   const double wx = w(0) + w(2) + w(4), wy = w(1) + w(3) + w(5);
   double scx = 0, sdx = 0, scy = 0, sdy = 0, cc = 0, dd = 0, cd = 0, cp = 0, dp = 0, abs_corner = 0;
+  double div = 0;  // the mass balance's c_m . vx + d_m . vy
   for (int b = 0; b < 3; ++b) {
     scx += c[b] * v(2 * b), sdx += d[b] * v(2 * b);
     scy += c[b] * v(2 * b + 1), sdy += d[b] * v(2 * b + 1);
     cc += c[b] * c[b], dd += d[b] * d[b], cd += c[b] * d[b];
     cp += c[b] * s.p(b), dp += d[b] * s.p(b);
-    abs_corner += std::abs(c[b]) * std::abs(v(2 * b)) + std::abs(d[b]) * std::abs(v(2 * b + 1));
+    div += g.cm[b] * v(2 * b) + g.dm[b] * v(2 * b + 1);
+    abs_corner += std::abs(g.cm[b]) * std::abs(v(2 * b)) + std::abs(g.dm[b]) * std::abs(v(2 * b + 1));
   }
   const double p_sum = s.p.sum();
   DirectResidual r;
@@ -45,13 +47,13 @@ DirectResidual element_residual(const TriangleGeometry& g, const FluidConstants&
   }
   r.rv(6) = f4 * bx - (m_a4 * wx + m_44 * w(6)) - k4 * ((4.0 * cc + 3.0 * dd) * v(6) + cd * v(7)) - 9.0 / 40.0 * t * cp;
   r.rv(7) = f4 * by - (m_a4 * wy + m_44 * w(7)) - k4 * (cd * v(6) + (4.0 * dd + 3.0 * cc) * v(7)) - 9.0 / 40.0 * t * dp;
-  r.mp = A / (6.0 * f.kappa) * t;
+  r.mp = g.Am / (6.0 * f.kappa) * t;
   for (int b = 0; b < 3; ++b) {
-    const double gtv = t / 6.0 * (scx + sdy) - 9.0 / 40.0 * t * (c[b] * v(6) + d[b] * v(7));
+    const double gtv = t / 6.0 * div - 9.0 / 40.0 * t * (g.cm[b] * v(6) + g.dm[b] * v(7));
     const double mp_dp = r.mp * (s.p(b) - s.pn(b)) / dt;
     r.rp(b) = -mp_dp - gtv;
     r.rp_abs(b) = std::abs(mp_dp) + t / 6.0 * abs_corner +
-                  9.0 / 40.0 * t * (std::abs(c[b]) * std::abs(v(6)) + std::abs(d[b]) * std::abs(v(7)));
+                  9.0 / 40.0 * t * (std::abs(g.cm[b]) * std::abs(v(6)) + std::abs(g.dm[b]) * std::abs(v(7)));
   }
   r.f_squared = (3.0 * fc * fc + f4 * f4) * (bx * bx + by * by);
   return r;
@@ -65,7 +67,7 @@ void geometric_derivatives(const TriangleGeometry& g, const MiniMatrices& m, dou
   const Vec8& v = s.v;
   // d/dA: M, F and Mp are proportional to A, K to 1/A; G does not depend on A.
   const Vec8 drv_dA = (m.F - m.M * ((v - s.vn) / dt) + m.K * v) / A;
-  const Vec3 drp_dA = -m.Mp.cwiseProduct(s.p - s.pn) / (dt * A);
+  const Vec3 drp_dA = -m.Mp.cwiseProduct(s.p - s.pn) / (dt * g.Am);  // at the midpoint
 
   // d/dc_e, d/dd_e of -K v + G p (rows) and of -G^T v, from (58)-(61).
   Mat83 drv_dc, drv_dd;
@@ -99,8 +101,8 @@ void geometric_derivatives(const TriangleGeometry& g, const MiniMatrices& m, dou
     const int next = (a + 1) % 3, prev = (a + 2) % 3;
     out.drv_dx.col(2 * a) = c[a] * drv_dA + drv_dd.col(next) - drv_dd.col(prev);
     out.drv_dx.col(2 * a + 1) = d[a] * drv_dA + drv_dc.col(prev) - drv_dc.col(next);
-    out.drp_dx.col(2 * a) = c[a] * drp_dA + drp_dd.col(next) - drp_dd.col(prev);
-    out.drp_dx.col(2 * a + 1) = d[a] * drp_dA + drp_dc.col(prev) - drp_dc.col(next);
+    out.drp_dx.col(2 * a) = g.cm[a] * drp_dA + drp_dd.col(next) - drp_dd.col(prev);
+    out.drp_dx.col(2 * a + 1) = g.dm[a] * drp_dA + drp_dc.col(prev) - drp_dc.col(next);
   }
 }
 

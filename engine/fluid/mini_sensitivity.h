@@ -3,7 +3,8 @@
 //
 // The element residual at velocities v (corners, then bubble), pressures p and their values
 // vn, pn at t_n:
-//   rv = F - M (v - vn)/dt - K v + G p        rp = -Mp (p - pn)/dt - G^T v
+//   rv = F - M (v - vn)/dt - K v + G p        rp = -Mp (p - pn)/dt - Gc^T v
+// (Gc, Mp at the midpoint geometry of the step, see continuity_at_midpoint)
 // Its derivatives with respect to the corner coordinates (x1 y1 x2 y2 x3 y3), v and p held
 // fixed, are the geometric matrices of (35)-(36) with the residual's sign: H = -drv/dx,
 // T = -drp/dx. They follow from the closed forms by the chain rule through A, c_a, d_a:
@@ -40,7 +41,10 @@ struct DirectResidual {
 DirectResidual element_residual(const TriangleGeometry& g, const FluidConstants& f, double thickness, double bx,
                                 double by, double dt, const ElementState& s);
 
-// drv/dx and drp/dx at the geometry g whose matrices are m (mu and the thickness t enter K).
+// drv/dx and drp/dx at the geometry g whose matrices are m (mu and the thickness t enter K):
+// rv's with respect to the corners at the step's end x, rp's with respect to the corners at
+// the midpoint (x_n + x)/2 of its mass balance (TriangleGeometry::Am, cm, dm). Both are the
+// derivatives with respect to x_n at fixed v; with respect to v they take dt and dt/2.
 struct GeometricDerivatives {
   Mat86 drv_dx;
   Mat36 drp_dx;

@@ -30,9 +30,15 @@ double distance_to_segment(double px, double py, const Segment& s) {
 // Wall nodes at spacing <= h along each polyline; corners shared by two walls appear once.
 // Returns the wall lines (for placing particles) and records the node pairs of every wall
 // piece in nodes' segment list.
+// The nodes inside a straight piece that no other wall shares slide along it (mesh::SlidingWallNode);
+// those of a slip wall also have their tangential velocity free (corners and ends: v = 0).
 std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState& nodes,
-                               std::vector<std::array<std::int32_t, 2>>& pieces) {
+                               std::vector<std::array<std::int32_t, 2>>& pieces, Problem& pb) {
   std::vector<Segment> segments;
+  std::vector<mesh::SlidingWallNode> candidates;
+  std::vector<std::array<std::int32_t, 2>> candidate_neighbours;
+  std::vector<std::uint8_t> candidate_slip;
+  std::vector<int> uses;
   const double merge = 1e-6 * h;
   auto add_unique = [&](double x, double y) -> std::int32_t {
     for (std::size_t i = 0; i < nodes.size(); ++i)
@@ -50,13 +56,34 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
       const double len = std::hypot(b.x() - a.x(), b.y() - a.y());
       const int count_pieces = std::max(1, static_cast<int>(std::ceil(len / h - 1e-9)));
       std::int32_t previous = -1;
+      const double tx = (b.x() - a.x()) / len, ty = (b.y() - a.y()) / len;
       for (int j = 0; j <= count_pieces; ++j) {
         const double t = static_cast<double>(j) / count_pieces;
         const std::int32_t node = add_unique(a.x() + t * (b.x() - a.x()), a.y() + t * (b.y() - a.y()));
         if (previous >= 0) pieces.push_back({previous, node});
+        uses.resize(nodes.size(), 0);
+        ++uses[node];
+        if (j > 1) candidate_neighbours.back()[1] = node;  // the previous node was inside the piece
+        if (j > 0 && j < count_pieces) {
+          // Less than half the spacing either way: it never reaches a neighbour's reach.
+          candidates.push_back({node, nodes.x[node], nodes.y[node], tx, ty, 0.49 * len / count_pieces});
+          candidate_neighbours.push_back({previous, -1});
+          candidate_slip.push_back(!w.slip() ? 0 : std::abs(tx) > 0.5 ? kSlipX : kSlipY);
+        }
         previous = node;
       }
     }
+  }
+  pb.wall_neighbours.assign(nodes.size(), {});
+  pb.wall_slip.assign(nodes.size(), 0);
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    if (uses[candidates[c].node] != 1) continue;
+    pb.wall_slip[candidates[c].node] = candidate_slip[c];
+    const int k = static_cast<int>(pb.sliding_walls.size());
+    pb.sliding_walls.push_back(candidates[c]);
+    pb.wall_neighbours[candidates[c].node].push_back(k);
+    for (const std::int32_t n : candidate_neighbours[c])
+      if (n >= 0) pb.wall_neighbours[n].push_back(k);
   }
   return segments;
 }
@@ -77,10 +104,36 @@ bool inside_polygon(const pfem::v1::Polygon& poly, double x, double y, double to
 
 // Particles on a grid of spacing h anchored at the region's lower-left corner; those closer
 // than h/2 to a wall or to a particle of an earlier region are left out (walls already
-// bound the fluid; overlapping regions do not double the water).
+// bound the fluid; overlapping regions do not double the water). A polygon's edges get a line
+// of particles at a spacing of at most h first, and grid points closer than h/2 to them are
+// left out: a sloped or curved surface is a smooth line of particles, not a staircase of h.
 void add_region(const pfem::v1::FluidRegion& region, double h, const std::vector<Segment>& walls,
                 NodeState& nodes, std::size_t first_particle) {
-  const std::size_t earlier_end = nodes.size();
+  const auto clear_of = [&](double x, double y, std::size_t first, std::size_t last) {
+    for (const auto& s : walls)
+      if (distance_to_segment(x, y, s) < 0.5 * h) return false;
+    for (std::size_t k = first; k < last; ++k)
+      if (std::hypot(nodes.x[k] - x, nodes.y[k] - y) < 0.5 * h) return false;
+    return true;
+  };
+  const auto add = [&](double x, double y) {
+    nodes.add(x, y, NodeKind::Fluid, region.velocity().x(), region.velocity().y());
+  };
+  if (region.has_polygon()) {
+    const auto& poly = region.polygon();
+    const int n = poly.points_size();
+    for (int i = 0; i < n; ++i) {
+      const auto& a = poly.points(i);
+      const auto& b = poly.points((i + 1) % n);
+      const int pieces = std::max(1, static_cast<int>(std::ceil(std::hypot(b.x() - a.x(), b.y() - a.y()) / h - 1e-9)));
+      for (int j = 0; j < pieces; ++j) {  // the end point is the next edge's first
+        const double t = static_cast<double>(j) / pieces;
+        const double x = a.x() + t * (b.x() - a.x()), y = a.y() + t * (b.y() - a.y());
+        if (clear_of(x, y, first_particle, nodes.size())) add(x, y);
+      }
+    }
+  }
+  const std::size_t outline_end = nodes.size();
   Bounds b;
   if (region.has_rectangle()) {
     b = {region.rectangle().min().x(), region.rectangle().min().y(), region.rectangle().max().x(),
@@ -95,12 +148,7 @@ void add_region(const pfem::v1::FluidRegion& region, double h, const std::vector
     for (int i = 0; i <= nx; ++i) {
       const double x = b.xmin + i * h, y = b.ymin + j * h;
       if (region.has_polygon() && !inside_polygon(region.polygon(), x, y, tol)) continue;
-      bool clear = true;
-      for (const auto& s : walls)
-        if (distance_to_segment(x, y, s) < 0.5 * h) { clear = false; break; }
-      for (std::size_t k = first_particle; clear && k < earlier_end; ++k)
-        if (std::hypot(nodes.x[k] - x, nodes.y[k] - y) < 0.5 * h) clear = false;
-      if (clear) nodes.add(x, y, NodeKind::Fluid, region.velocity().x(), region.velocity().y());
+      if (clear_of(x, y, first_particle, outline_end)) add(x, y);  // earlier regions and this outline
     }
   }
 }
@@ -187,13 +235,14 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
 
   const Bounds domain = domain_bounds(model);
   pb.domain = {domain.xmin, domain.ymin, domain.xmax, domain.ymax};
+  pb.fail_on_exit = model.has_domain() && model.domain().on_exit() == "fail";
 
   // The model with every parameter's value on its targets (the structure is built from it).
   pfem::v1::Model with_values = model;
   apply_parameter_overrides(with_values);
   std::vector<std::vector<std::string>> sensitivity_targets;
   sensitivity_seeds(model, sensitivity_params, pb, sensitivity_targets);
-  auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments);
+  auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments, pb);
   std::map<std::string, int> structure_node_by_name, element_by_name;
   if (model.has_structure()) {
     StructureBuild sb = build_structure(with_values, sensitivity_targets);
@@ -234,7 +283,8 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
 
   for (const auto& r : model.recorders()) {
     RecorderSpec spec{r.name(), r.quantity(), -1};
-    if (r.has_point()) spec.node = nearest_node(pb.nodes, r.point().x(), r.point().y());
+    if (r.has_point() && is_point_quantity(r.quantity())) spec.x = r.point().x(), spec.y = r.point().y();
+    else if (r.has_point()) spec.node = nearest_node(pb.nodes, r.point().x(), r.point().y());
     if (r.has_node()) spec.node = structure_node_by_name.at(r.node());  // validated above
     if (r.has_element()) {
       spec.element = element_by_name.at(r.element());

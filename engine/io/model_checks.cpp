@@ -22,6 +22,11 @@ const std::set<std::string>& element_quantities() {
   static const std::set<std::string> q{"basic_force", "fiber_stress", "fiber_strain"};
   return q;
 }
+// Fields read at a fixed place in space (engine/analysis/field_probes.h).
+const std::set<std::string>& point_quantities() {
+  static const std::set<std::string> q{"pressure", "wave_gauge"};
+  return q;
+}
 const std::set<std::string>& global_quantities() {
   static const std::set<std::string> q{"fluid_area", "front_x", "front_y", "max_speed"};
   return q;
@@ -63,6 +68,7 @@ bool beam_elements_valid(const pfem::v1::Beam& b) {
 bool is_nodal_quantity(const std::string& q) { return nodal_quantities().count(q) > 0; }
 bool is_element_quantity(const std::string& q) { return element_quantities().count(q) > 0; }
 bool is_global_quantity(const std::string& q) { return global_quantities().count(q) > 0; }
+bool is_point_quantity(const std::string& q) { return point_quantities().count(q) > 0; }
 
 std::optional<TargetRef> parse_parameter_target(const std::string& t) {
   if (t == "fluid.rho" || t == "fluid.mu" || t == "fluid.kappa") return TargetRef{"fluid", "", t.substr(6)};
@@ -122,7 +128,6 @@ std::vector<FieldError> ModelChecker::run() {
   collect_structure_names();
   if (model_.fluid_regions_size() == 0 && model_.walls_size() == 0) {
     error("model", "is empty: it needs at least one fluid region and one wall");
-    return errors_;
   }
   if (model_.has_thickness()) positive("thickness", model_.thickness());
   if (model_.has_gravity()) {
@@ -190,6 +195,11 @@ void ModelChecker::check_walls() {
       finite(at(path + ".points", k) + ".y", w.points(k).y());
       if (k > 0 && w.points(k).x() == w.points(k - 1).x() && w.points(k).y() == w.points(k - 1).y())
         error(at(path + ".points", k), "repeats the previous point (zero-length segment)");
+      const int next = (k + 1) % w.points_size();
+      if (w.slip() && (k + 1 < w.points_size() || w.closed()) && w.points(k).x() != w.points(next).x() &&
+          w.points(k).y() != w.points(next).y())
+        error(at(path + ".points", k), "a slip wall's pieces must be horizontal or vertical (this one ends at point " +
+                                           std::to_string(next) + ")");
     }
   }
 }
@@ -202,6 +212,8 @@ void ModelChecker::check_domain() {
     finite(name, v);
   if (!(d.max().x() > d.min().x()) || !(d.max().y() > d.min().y()))
     error("domain", "max must be greater than min in x and y");
+  if (d.has_on_exit() && d.on_exit() != "remove" && d.on_exit() != "fail")
+    error("domain.on_exit", "must be \"remove\" or \"fail\" (got \"" + d.on_exit() + "\")");
 }
 
 void ModelChecker::check_regions() {
@@ -288,12 +300,7 @@ void ModelChecker::check_recorders() {
       const bool rz = r.quantity() == "rz";
       if (r.has_point()) {
         if (rz) error(path + ".point", "quantity 'rz' needs a structure node (node), not a point");
-        finite(path + ".point.x", r.point().x());
-        finite(path + ".point.y", r.point().y());
-        const Bounds domain = domain_bounds(model_);
-        if (domain.valid() && std::isfinite(r.point().x()) && std::isfinite(r.point().y()) &&
-            !domain.contains(Bounds{r.point().x(), r.point().y(), r.point().x(), r.point().y()}, 0.0))
-          error(path + ".point", "lies outside the domain");
+        check_point(r, path);
       } else if (r.has_node()) {
         if (!is_structure_node(r.node())) error(path + ".node", "unknown node '" + r.node() + "'");
       } else if (r.has_element()) {
@@ -304,12 +311,24 @@ void ModelChecker::check_recorders() {
       }
     } else if (is_element_quantity(r.quantity())) {
       check_element_recorder(r, path);
+    } else if (is_point_quantity(r.quantity())) {
+      if (r.has_point()) check_point(r, path);
+      else error(path, "quantity '" + r.quantity() + "' needs a target: point");
     } else if (!is_global_quantity(r.quantity())) {
       error(path + ".quantity", "unknown quantity '" + r.quantity() + "'; expected one of " +
                                     listed(nodal_quantities()) + ", " + listed(element_quantities()) +
-                                    ", " + listed(global_quantities()));
+                                    ", " + listed(point_quantities()) + ", " + listed(global_quantities()));
     }
   }
+}
+
+void ModelChecker::check_point(const pfem::v1::Recorder& r, const std::string& path) {
+  finite(path + ".point.x", r.point().x());
+  finite(path + ".point.y", r.point().y());
+  const Bounds domain = domain_bounds(model_);
+  if (domain.valid() && std::isfinite(r.point().x()) && std::isfinite(r.point().y()) &&
+      !domain.contains(Bounds{r.point().x(), r.point().y(), r.point().x(), r.point().y()}, 0.0))
+    error(path + ".point", "lies outside the domain");
 }
 
 void ModelChecker::check_element_recorder(const pfem::v1::Recorder& r, const std::string& path) {

@@ -15,6 +15,7 @@ namespace pfem {
 bool is_nodal_quantity(const std::string& q);
 bool is_element_quantity(const std::string& q);
 bool is_global_quantity(const std::string& q);
+bool is_point_quantity(const std::string& q);
 
 // A parameter target split into its parts:
 //   "fluid.rho"              -> {"fluid", "", "rho"}        (also mu, kappa)
@@ -82,6 +83,7 @@ class ModelChecker {
   bool is_structure_node(const std::string& name) const;
   int beam_of_element(const std::string& name) const;
   void check_element_recorder(const pfem::v1::Recorder& r, const std::string& path);
+  void check_point(const pfem::v1::Recorder& r, const std::string& path);
   void check_target(const std::string& target, const std::string& path);
   void check_target_value(const std::string& target, double value, const std::string& path);
 

@@ -64,11 +64,16 @@ std::string summary_json(const RunSummary& s) {
     << "  \"substeps\": " << s.substeps << ",\n"
     << "  \"removed_particles\": " << s.removed_particles << ",\n"
     << "  \"inserted_particles\": " << s.inserted_particles << ",\n"
+    << "  \"left_domain\": " << s.left_domain << ",\n"
+    << "  \"fluid_area_max_drift\": " << number(s.fluid_area_max_drift) << ",\n"
     << "  \"particles\": " << s.particles << ",\n"
     << "  \"max_elements\": " << s.max_elements << ",\n"
     << "  \"fluid_area_initial\": " << number(s.fluid_area_initial) << ",\n"
     << "  \"fluid_area_final\": " << number(s.fluid_area_final) << ",\n"
     << "  \"sensitivity_method\": " << quoted(s.sensitivity_method) << ",\n"
+    << "  \"warnings\": [";
+  for (std::size_t i = 0; i < s.warnings.size(); ++i) o << (i ? ", " : "") << quoted(s.warnings[i]);
+  o << "],\n"
     << "  \"parameters\": {";
   for (std::size_t i = 0; i < s.parameters.size(); ++i)
     o << (i ? ", " : "") << quoted(s.parameters[i]) << ": "

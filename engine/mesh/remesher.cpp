@@ -272,39 +272,45 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
   for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f)
     f->info() = f->info() == kKept || f->info() == kPocket ? 1 : 0;
 
-  // Pass 1b: drop "hanging" triangles: two wall/structure nodes and one fluid particle on the
-  // boundary (on a free edge) whose wall edge lies wholly at or above the particle (neither
-  // wall node more than a tenth of h below it, along gravity). They wet the wall above the
-  // waterline, add mass that nothing supports and make the contact line creep up the wall.
-  // A triangle whose wall edge reaches below the particle is kept: it is the water at the
-  // contact line, or a jet climbing the wall that must stay attached to it.
-  std::vector<std::uint8_t> on_boundary(n, 0);
-  for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
-    if (!f->info()) continue;
-    for (int e = 0; e < 3; ++e) {
-      if (!is_free_edge(tri, f, e, kind)) continue;
-      on_boundary[f->vertex(Delaunay::ccw(e))->info()] = 1;
-      on_boundary[f->vertex(Delaunay::cw(e))->info()] = 1;
-    }
-  }
-  std::vector<Delaunay::Face_handle> drop;
+  // Pass 1b: drop "hanging" triangles above the waterline at a wall: a wall/structure node that
+  // is higher (against gravity) than every particle of its triangle by more than a tenth of h,
+  // in a triangle open to the air along an edge at that node: one particle on the free surface
+  // with two wall nodes wholly at or above it, or two particles with one wall node above both.
+  // They wet the wall above the water, add mass that nothing supports and make the contact line
+  // creep up the wall (still water then flows at the walls). A triangle whose wall edge reaches
+  // below its particle is kept: it is the water at the contact line, or a jet climbing the wall
+  // that must stay attached to it. Dropping one can open the next (the particle under it is
+  // now on the surface): repeated until none is left.
   const double g_norm = std::hypot(options.gravity_x, options.gravity_y);
-  for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
-    if (!f->info() || g_norm == 0.0) continue;
-    int particle = -1, fluid = 0;
-    for (int k = 0; k < 3; ++k)
-      if (kind[f->vertex(k)->info()] == NodeKind::Fluid) ++fluid, particle = f->vertex(k)->info();
-    if (fluid != 1 || !on_boundary[particle]) continue;
-    bool wall_reaches_below = false;
-    for (int k = 0; k < 3; ++k) {
-      const std::int32_t i = f->vertex(k)->info();
-      const double depth_below = ((x[i] - x[particle]) * options.gravity_x +
-                                  (y[i] - y[particle]) * options.gravity_y) / g_norm;
-      if (i != particle && depth_below > 0.1 * options.h) wall_reaches_below = true;
+  const auto height_over = [&](std::int32_t i, std::int32_t j) {  // of node i above node j
+    return -((x[i] - x[j]) * options.gravity_x + (y[i] - y[j]) * options.gravity_y) / g_norm;
+  };
+  std::vector<Delaunay::Face_handle> drop;
+  for (int round = 0; g_norm > 0.0 && (round == 0 || !drop.empty()); ++round) {
+    drop.clear();
+    for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
+      if (!f->info()) continue;
+      int fluid = 0;
+      for (int k = 0; k < 3; ++k) fluid += kind[f->vertex(k)->info()] == NodeKind::Fluid;
+      if (fluid == 0 || fluid == 3) continue;
+      bool hanging = true, open = false;
+      for (int w = 0; w < 3 && hanging; ++w) {
+        const std::int32_t wall = f->vertex(w)->info();
+        if (kind[wall] == NodeKind::Fluid) continue;
+        for (int k = 0; k < 3; ++k) {
+          const std::int32_t i = f->vertex(k)->info();
+          if (kind[i] != NodeKind::Fluid) continue;
+          // One particle: both wall nodes at or above it; two: the wall node above both.
+          if (fluid == 1 ? height_over(wall, i) < -0.1 * options.h : height_over(wall, i) <= 0.1 * options.h)
+            hanging = false;
+        }
+        // The edges at the wall node are those opposite the other two vertices.
+        open = open || is_free_edge(tri, f, Delaunay::ccw(w), kind) || is_free_edge(tri, f, Delaunay::cw(w), kind);
+      }
+      if (hanging && open) drop.push_back(f);
     }
-    if (!wall_reaches_below) drop.push_back(f);
+    for (auto f : drop) f->info() = 0;
   }
-  for (auto f : drop) f->info() = 0;
   for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
     if (!f->info()) continue;
     const std::int32_t i0 = f->vertex(0)->info();
@@ -314,18 +320,18 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
     mesh.in_mesh[i0] = mesh.in_mesh[i1] = mesh.in_mesh[i2] = 1;
   }
 
-  // Pass 2: both ends of a free edge (see is_free_edge) get p = 0, wall nodes at the contact
-  // line too. A wall node on a free edge must not keep a pressure unknown: its only equation
-  // would be the mass balance of one or two triangles above the waterline, a stiff
-  // compressible pocket. A constraint edge is never free: the triangle on its other side was
+  // Pass 2: both ends of a free edge (see is_free_edge) are on the free surface, wall nodes at
+  // the contact line too. A constraint edge is never free: the triangle on its other side was
   // evaluated on its own (no triangle crosses a constraint).
   for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
     if (!f->info()) continue;
     for (int e = 0; e < 3; ++e) {
       if (!is_free_edge(tri, f, e, kind)) continue;
       // Edge e is opposite vertex e: its ends are vertices ccw(e) and cw(e).
-      mesh.free_surface[f->vertex(Delaunay::ccw(e))->info()] = 1;
-      mesh.free_surface[f->vertex(Delaunay::cw(e))->info()] = 1;
+      const std::int32_t a = f->vertex(Delaunay::ccw(e))->info(), b = f->vertex(Delaunay::cw(e))->info();
+      mesh.free_surface[a] = mesh.free_surface[b] = 1;
+      if (kind[a] == NodeKind::Fluid && kind[b] == NodeKind::Wall) mesh.contact_edges.push_back({a, b});
+      if (kind[b] == NodeKind::Fluid && kind[a] == NodeKind::Wall) mesh.contact_edges.push_back({b, a});
     }
   }
   return mesh;

@@ -50,9 +50,11 @@ struct FluidMesh {
   std::vector<std::array<std::int32_t, 3>> triangles;  // node indices, counter-clockwise
   std::vector<std::uint8_t> in_mesh;       // per node: a corner of at least one kept triangle
   // per node: on a free edge of the kept region (a boundary edge with a fluid end that is not
-  // a constraint), p = 0; wall and structure nodes where the free surface meets them are
-  // included.
+  // a constraint); wall and structure nodes where the free surface meets them are included.
   std::vector<std::uint8_t> free_surface;
+  // Free edges from a fluid particle to a wall node (particle, wall node): where the free
+  // surface meets a wall (see contact_line.h), in the order of the triangulation's faces.
+  std::vector<std::array<std::int32_t, 2>> contact_edges;
 };
 
 // Triangulates the nodes (x[i], y[i]) of kinds kind[i], honouring options.constraints.

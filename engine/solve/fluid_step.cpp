@@ -58,7 +58,11 @@ void UnifiedStep::number_unknowns(const mesh::FluidMesh& mesh, const NodeState& 
     if (!mesh.in_mesh[i]) continue;
     if (!nodes.is_fixed(i) && nodes.kind[i] != mesh::NodeKind::Structure)
       vx_dof_[i] = n_node_v_++, vy_dof_[i] = n_node_v_++;
-    if (!mesh.free_surface[i]) pdof_[i] = n_p_++;
+    else if (nodes.kind[i] == mesh::NodeKind::Wall && i < s.slip.size() && s.slip[i] == kSlipX)
+      vx_dof_[i] = n_node_v_++;
+    else if (nodes.kind[i] == mesh::NodeKind::Wall && i < s.slip.size() && s.slip[i] == kSlipY)
+      vy_dof_[i] = n_node_v_++;
+    pdof_[i] = n_p_++;  // on the free surface too (see the header)
   }
   // Structure nodes move with the structure whether or not water touches them; a supported
   // dof has no unknown. Their velocity unknowns are the fluid's at the same node.
@@ -83,13 +87,15 @@ void UnifiedStep::element_terms(const mesh::FluidMesh& mesh, const StepSettings&
   matrices_current_ = false;
 #pragma omp parallel for schedule(static) num_threads(s.threads)
   for (int e = 0; e < ne; ++e) {
-    std::array<double, 3> x, y;
+    std::array<double, 3> x, y, xn, yn;
     for (int a = 0; a < 3; ++a) {
       const int i = mesh.triangles[e][a], dx = vx_dof_[i], dy = vy_dof_[i];
+      xn[a] = xn_[i], yn[a] = yn_[i];
       x[a] = xn_[i] + (dx >= 0 ? s.dt * v_[dx] : 0.0);
       y[a] = yn_[i] + (dy >= 0 ? s.dt * v_[dy] : 0.0);
     }
     geometries_[e] = fluid::triangle_geometry(x, y);
+    fluid::continuity_at_midpoint(geometries_[e], xn, yn);
     element_residuals_[e] =
         fluid::element_residual(geometries_[e], s.fluid, s.thickness, s.gx, s.gy, s.dt, element_state(mesh, e));
   }
@@ -194,27 +200,31 @@ void UnifiedStep::correct_global_bubble(const StepSettings& s) {
 void UnifiedStep::condense_element(int e, const StepSettings& s, const fluid::GeometricDerivatives* geometric,
                                    BubbleCondensation& b, CondensedElement& k) const {
   const auto& m = mats_[e];
-  // Element Jacobian -d(rv, rp)/d(v, p): [a -G; Q G_b^T Mp/dt] with a = M/dt + K - dt drv/dx and
-  // Q = G_c^T - dt drp/dx (the coordinates move with the corner velocities, x = x_n + dt v).
+  // Element Jacobian -d(rv, rp)/d(v, p): [a -G; Q Gc_b^T Mp/dt] with a = M/dt + K - dt drv/dx and
+  // Q = Gc_c^T - dt/2 drp/dx (the coordinates move with the corner velocities, x = x_n + dt v,
+  // and the mass balance's midpoint with half of them). The Newton matrix takes G for Gc and no
+  // drv/dx, drp/dx: symmetric, and off the Jacobian by terms of order dt |grad v|.
+  const fluid::Mat83& gc = geometric ? m.Gc : m.G;
   fluid::Mat8 a = m.M * (1.0 / s.dt) + m.K;
-  Eigen::Matrix<double, 3, 6> q = m.G.block<6, 3>(0, 0).transpose();
+  Eigen::Matrix<double, 3, 6> q = gc.block<6, 3>(0, 0).transpose();
   if (geometric) {
     a.leftCols<6>() -= s.dt * geometric->drv_dx;
-    q -= s.dt * geometric->drp_dx;
+    q -= 0.5 * s.dt * geometric->drp_dx;
   }
   b.inv_bb = a.block<2, 2>(6, 6).inverse();
   b.a_bc = a.block<2, 6>(6, 0);
   b.a_cb = a.block<6, 2>(0, 6);
   b.g_b = m.G.block<2, 3>(6, 0);
+  b.gc_b = gc.block<2, 3>(6, 0);
   // Element Schur complements with dvb = Abb^-1 (r_b - A_bc dvc + G_b dp):
   // A' = A_cc - A_cb Abb^-1 A_bc, G' = G_c - A_cb Abb^-1 G_b (velocity rows),
-  // Q' = Q - G_b^T Abb^-1 A_bc, C = G_b^T Abb^-1 G_b (pressure rows, negated).
+  // Q' = Q - Gc_b^T Abb^-1 A_bc, C = Gc_b^T Abb^-1 G_b (pressure rows, negated).
   const Eigen::Matrix<double, 6, 2> acb_inv = b.a_cb * b.inv_bb;
-  const Eigen::Matrix<double, 2, 3> inv_gb = b.inv_bb * b.g_b;
+  const Eigen::Matrix<double, 3, 2> gcb_inv = b.gc_b.transpose() * b.inv_bb;
   k.topLeftCorner<6, 6>() = a.block<6, 6>(0, 0) - acb_inv * b.a_bc;
   k.topRightCorner<6, 3>() = acb_inv * b.g_b - m.G.block<6, 3>(0, 0);
-  k.bottomLeftCorner<3, 6>() = inv_gb.transpose() * b.a_bc - q;
-  k.bottomRightCorner<3, 3>() = -(b.g_b.transpose() * inv_gb);
+  k.bottomLeftCorner<3, 6>() = gcb_inv * b.a_bc - q;
+  k.bottomRightCorner<3, 3>() = -(gcb_inv * b.g_b);
 }
 
 std::array<int, 9> UnifiedStep::element_unknowns(const std::array<std::int32_t, 3>& tri) const {
@@ -380,7 +390,7 @@ void UnifiedStep::solve_condensed(const mesh::FluidMesh& mesh, const std::vector
       for (int k = 0; k < 3; ++k) {
         if (const int dx = vx_dof_[tri[k]]; dx >= 0) rhs(dx, c) -= b.a_cb.row(2 * k).dot(ze);
         if (const int dy = vy_dof_[tri[k]]; dy >= 0) rhs(dy, c) -= b.a_cb.row(2 * k + 1).dot(ze);
-        if (const int q = pdof_[tri[k]]; q >= 0) rhs(n_node_v_ + q, c) += b.g_b.col(k).dot(ze);
+        if (const int q = pdof_[tri[k]]; q >= 0) rhs(n_node_v_ + q, c) += b.gc_b.col(k).dot(ze);
       }
     }
   }

@@ -2,8 +2,12 @@
 // One PFEM time step on a fixed mesh: the Newton solve of theory §4.
 //
 // Unknowns: a velocity at every free node in the mesh (wall nodes are fixed at v = 0), a
-// bubble velocity per triangle, and a pressure at every mesh node that is not on the free
-// surface (p = 0 there). The bubble is a hierarchical enrichment (v = sum L_a v_a +
+// bubble velocity per triangle, and a pressure at every mesh node, free-surface nodes
+// included: the free surface is traction free in the weak form (its natural condition), and
+// the mass balance is tested at every node, so that sum_q of the rows is the whole water's
+// area change (exact with the midpoint mass balance, fluid::continuity_at_midpoint). With
+// p = 0 imposed at surface nodes their rows were missing: the surface layer could lose area
+// unchecked, and still water under gravity did so unstably (growing at ~5 /s at mu = 1e-3). The bubble is a hierarchical enrichment (v = sum L_a v_a +
 // 27 L1 L2 L3 v_b) whose mass couples to the corners (M_a4 != 0), so its momentum must be
 // carried from step to step: a triangle that survives remeshing (same three nodes) keeps its
 // bubble velocity; a new triangle starts with none. Resetting it every step instead acts as a
@@ -69,6 +73,11 @@ struct StepSettings {
   int threads = 1;  // for the element loops
   // Wall and beam pieces (node pairs): no particle may pass through them within a step.
   std::span<const std::array<std::int32_t, 2>> walls;
+  // Per node (empty: none): kSlipX or kSlipY for a node of a slip wall whose x or y velocity is
+  // free (a horizontal or a vertical wall: no normal velocity). Within a step it moves along
+  // its wall with the water; it returns to its place before the next remeshing (see
+  // mesh/contact_line.h), keeping its velocity.
+  std::span<const std::uint8_t> slip;
   StructureCoupling structure;  // no structure when model is null
   // DDM (theory §5): one seed per parameter (how it moves the fluid constants; the structure's
   // seeds live in its model); empty for no sensitivities. Without geometric terms H and T are
@@ -120,7 +129,8 @@ class UnifiedStep {
     Eigen::Matrix2d inv_bb;
     Eigen::Matrix<double, 2, 6> a_bc;
     Eigen::Matrix<double, 6, 2> a_cb;
-    Eigen::Matrix<double, 2, 3> g_b;
+    Eigen::Matrix<double, 2, 3> g_b;   // bubble rows of G (momentum)
+    Eigen::Matrix<double, 2, 3> gc_b;  // ... of the mass balance's Gc (G in the Newton matrix)
   };
 
   void number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes, const StepSettings& s);

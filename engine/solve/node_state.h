@@ -3,11 +3,15 @@
 // (later) structure nodes in one set of arrays. Everything lives on nodes so that it survives
 // remeshing (theory §6, step 4).
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "engine/mesh/remesher.h"
 
 namespace pfem {
+
+// The free velocity component of a slip wall's node (StepSettings::slip).
+inline constexpr std::uint8_t kSlipX = 1, kSlipY = 2;
 
 struct NodeState {
   std::vector<double> x0, y0;  // positions at t = 0 [m]

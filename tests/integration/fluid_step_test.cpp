@@ -121,8 +121,8 @@ TEST(FluidStep, AParticleThatWouldCrossAWallOrBeamIsTakenOut) {
 }
 
 // A step far too long for the flow (a 0.2 s step of a collapsing water column): Newton does not
-// halve its residual within ten iterations and the step gives up there, long before
-// max_iterations, saying so (the caller then halves the step).
+// halve its residual within ten iterations (or its iterate leaves the finite numbers) and the
+// step gives up there, long before max_iterations, saying so (the caller then halves the step).
 TEST(FluidStep, NewtonGivesUpWhenTheResidualStopsFalling) {
   const Problem pb = build_problem(example("dam-break.json"));
   NodeState nodes = pb.nodes;
@@ -135,7 +135,10 @@ TEST(FluidStep, NewtonGivesUpWhenTheResidualStopsFalling) {
     step.advance(mesh, s, nodes);
     ADD_FAILURE() << "converged in " << step.last_report().iterations << " iterations";
   } catch (const StepFailure& e) {
-    EXPECT_NE(std::string(e.what()).find("not halved in the last iterations"), std::string::npos) << e.what();
+    const std::string why = e.what();
+    EXPECT_TRUE(why.find("not halved in the last iterations") != std::string::npos ||
+                why.find("non-finite residual") != std::string::npos)
+        << why;
     EXPECT_LT(step.last_report().iterations, 100);
   }
 }

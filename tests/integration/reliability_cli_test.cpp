@@ -148,7 +148,7 @@ TEST(ReliabilityCli, ModelLimitStateConvergesWithDdmAndFdm) {
     // Every evaluation of the iHLRF carries a gradient: DDM one run each, FDM 2P + 1 = 5.
     EXPECT_EQ(runs[i], (i == 0 ? 1 : 5) * static_cast<long long>(number(r, "evaluations")));
   }
-  EXPECT_NEAR(betas[0], 1.49114, 1e-3);  // the README's run; FDM gradients must agree
+  EXPECT_NEAR(betas[0], 1.73681, 1e-3);  // the README's run; FDM gradients must agree
   EXPECT_NEAR(betas[1], betas[0], 1e-5);
 }
 

@@ -16,29 +16,8 @@ namespace {
 namespace rel = pfem::reliability;
 using namespace pfem::testing;
 
-// The cantilever's tip deflection peaks at 1.30 mm near t = 0.038 s (E = 1 MPa, rho = 1000).
-const char* kCantilever = R"({
-  "name": "tiny-cantilever", "thickness": 0.012,
-  "fluid": {"rho": 1000.0, "mu": 0.01, "kappa": 2.15e9},
-  "mesh": {"h": 0.01},
-  "fluid_regions": [{"name": "water", "rectangle": {"min": {"x": 0.0, "y": 0.0}, "max": {"x": 0.05, "y": 0.05}}}],
-  "walls": [{"name": "tank", "points": [{"x": 0.0, "y": 0.08}, {"x": 0.0, "y": 0.0}, {"x": 0.05, "y": 0.0}]}],
-  "structure": {
-    "nodes": [{"name": "base", "x": 0.05, "y": 0.0, "support": {"ux": true, "uy": true, "rz": true}},
-              {"name": "tip", "x": 0.05, "y": 0.05}],
-    "materials": [{"name": "soft", "elastic": {"e": 1e6}}],
-    "sections": [{"name": "square", "fiber_rectangle": {"width": 0.012, "depth": 0.012, "fibers": 10, "material": "soft"}}],
-    "beams": [{"name": "beam", "from_node": "base", "to_node": "tip", "elements": 5,
-               "element_type": "elastic", "section": "square", "rho": 2500.0}]
-  },
-  "analysis": {"dt": 0.002, "t_end": 0.04},
-  "recorders": [{"name": "tip_ux", "quantity": "ux", "node": "tip"},
-                {"name": "base_p", "quantity": "p", "node": "beam/1"}],
-  "parameters": [{"name": "E", "targets": ["material.soft.e"]},
-                 {"name": "density", "targets": ["fluid.rho"]}]
-})";
-
-// E lognormal (CoV 10 %), the water density normal (5 %, mapped to the model's "density");
+// kTinyCantileverJson: the tip deflection peaks at 1.30 mm near t = 0.038 s (E = 1 MPa,
+// rho = 1000). E lognormal (CoV 10 %), the water density normal (5 %, mapped to the model's "density");
 // failure when the peak tip deflection exceeds 1.6 mm.
 std::string problem_json(const std::string& limit_state_extra = "",
                          const std::string& threshold = "0.0016") {
@@ -46,7 +25,7 @@ std::string problem_json(const std::string& limit_state_extra = "",
       {"name": "E", "distribution": "lognormal", "mean": 1e6, "stddev": 1e5},
       {"name": "rho", "distribution": "normal", "mean": 1000, "stddev": 50}],
     "limit_state": {"model": {"model": )") +
-         kCantilever + R"(, "recorder": "tip_ux", "functional": "max_abs", "threshold": )" +
+         kTinyCantileverJson + R"(, "recorder": "tip_ux", "functional": "max_abs", "threshold": )" +
          threshold + R"(, "parameters": {"rho": "density"})" + limit_state_extra + "}}}";
 }
 

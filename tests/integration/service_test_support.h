@@ -39,6 +39,28 @@ inline const char* kTinyModelJson = R"({
 
 inline pfem::v1::Model tiny_model() { return pfem::parse_model_json(kTinyModelJson); }
 
+// A soft elastic cantilever in still water: 5 beam elements, 20 steps of 2 ms (about 0.1 s).
+inline const char* kTinyCantileverJson = R"({
+  "name": "tiny-cantilever", "thickness": 0.012,
+  "fluid": {"rho": 1000.0, "mu": 0.01, "kappa": 2.15e9},
+  "mesh": {"h": 0.01},
+  "fluid_regions": [{"name": "water", "rectangle": {"min": {"x": 0.0, "y": 0.0}, "max": {"x": 0.05, "y": 0.05}}}],
+  "walls": [{"name": "tank", "points": [{"x": 0.0, "y": 0.08}, {"x": 0.0, "y": 0.0}, {"x": 0.05, "y": 0.0}]}],
+  "structure": {
+    "nodes": [{"name": "base", "x": 0.05, "y": 0.0, "support": {"ux": true, "uy": true, "rz": true}},
+              {"name": "tip", "x": 0.05, "y": 0.05}],
+    "materials": [{"name": "soft", "elastic": {"e": 1e6}}],
+    "sections": [{"name": "square", "fiber_rectangle": {"width": 0.012, "depth": 0.012, "fibers": 10, "material": "soft"}}],
+    "beams": [{"name": "beam", "from_node": "base", "to_node": "tip", "elements": 5,
+               "element_type": "elastic", "section": "square", "rho": 2500.0}]
+  },
+  "analysis": {"dt": 0.002, "t_end": 0.04},
+  "recorders": [{"name": "tip_ux", "quantity": "ux", "node": "tip"},
+                {"name": "base_p", "quantity": "p", "node": "beam/1"}],
+  "parameters": [{"name": "E", "targets": ["material.soft.e"]},
+                 {"name": "density", "targets": ["fluid.rho"]}]
+})";
+
 // A directory removed when the test ends.
 struct TempDir {
   std::filesystem::path path;

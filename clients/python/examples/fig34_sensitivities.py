@@ -25,17 +25,16 @@ recorder with its sensitivities) and the files written:
 Any model works: name its recorders and parameters with --recorders and --params.
 """
 import argparse
-import csv
-import json
 import os
 import sys
-from types import SimpleNamespace
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+from pfem_client import plot_histories, read_result_dir  # noqa: E402
 
 _UNITS = {"ux": "m", "uy": "m", "rz": "rad", "vx": "m/s", "vy": "m/s", "p": "Pa"}
 
@@ -46,44 +45,8 @@ def _label(recorder: str) -> str:
     return f"{recorder} [{unit}]" if unit else recorder
 
 
-def read_result_dir(path: str):
-    """A Result-like object from responses.csv, sensitivities.csv and summary.json."""
-    def columns(file):
-        with open(file, newline="") as f:
-            rows = list(csv.reader(f))
-        header, data = rows[0], np.array(rows[1:], dtype=np.float64).reshape(-1, len(rows[0]))
-        return data[:, 0], {name: data[:, j] for j, name in enumerate(header) if j > 0}
-
-    time, responses = columns(os.path.join(path, "responses.csv"))
-    sens_file = os.path.join(path, "sensitivities.csv")
-    sens_time, sensitivities = (columns(sens_file) if os.path.exists(sens_file)
-                                else (np.zeros(0), {}))
-    summary = {}
-    if os.path.exists(os.path.join(path, "summary.json")):
-        with open(os.path.join(path, "summary.json")) as f:
-            summary = json.load(f)
-    params = summary.get("parameters", {})
-    return SimpleNamespace(
-        time=time, responses=responses, sensitivity_time=sens_time,
-        sensitivities=sensitivities,
-        parameters=list(params), parameter_values=[float(v) for v in params.values()],
-        method=summary.get("sensitivity_method", ""), message=summary.get("message", ""),
-        name=os.path.basename(os.path.normpath(path)),
-        sensitivity=lambda r, p: sensitivities[f"d{r}/d{p}"])
-
-
-def _from_client(result):
-    return SimpleNamespace(
-        time=result.time, responses=result.responses, sensitivity_time=result.sensitivity_time,
-        sensitivities=result.sensitivities, parameters=list(result.summary.parameters),
-        parameter_values=list(result.summary.parameter_values),
-        method=result.summary.sensitivity_method, message=result.summary.message,
-        name=result.job.model_name, sensitivity=result.sensitivity, client_result=result)
-
-
 def fetch(args, params):
     """(DDM result, FDM result or None) from the server: submitted here or given by id."""
-    from pfem.v1 import service_pb2
     from pfem_client import Client
 
     def progress(tag):
@@ -92,9 +55,9 @@ def fetch(args, params):
         def show(job):
             p = job.progress
             if p.total_steps and (p.step * 10 // p.total_steps != last[0] or
-                                  job.state >= service_pb2.JOB_STATE_SUCCEEDED):
+                                  job.finished):
                 last[0] = p.step * 10 // p.total_steps
-                print(f"{tag} {service_pb2.JobState.Name(job.state)[10:]} step "
+                print(f"{tag} {job.state} step "
                       f"{p.step}/{p.total_steps} t={p.time:.4g} s "
                       f"elapsed {p.elapsed_seconds:.1f} s", flush=True)
         return show
@@ -116,14 +79,14 @@ def fetch(args, params):
                 out.append(None)
                 continue
             job = client.watch(job_id, callback=progress(f"{tag} {job_id}"))
-            if job.state != service_pb2.JOB_STATE_SUCCEEDED:
-                print(f"fig34: job {job_id} {service_pb2.JobState.Name(job.state)}: "
+            if job.state != "SUCCEEDED":
+                print(f"fig34: job {job_id} {job.state}: "
                       f"{job.error.message}" + (" (no FDM overlay)" if tag == "fdm" else ""),
                       file=sys.stderr)
                 if tag == "fdm":
                     out.append(None)
                     continue
-            out.append(_from_client(client.result(job_id)))
+            out.append(client.result(job_id))
         return out[0], out[1]
 
 
@@ -195,10 +158,7 @@ def plot(result, fdm, recorders, params, out, scaled=False):
     plt.close(fig)
 
     written = [fig3, fig4]
-    if hasattr(result, "client_result"):
-        from pfem_client import plot_histories
-        written += plot_histories(result.client_result, out)
-    return written
+    return written + plot_histories(result, out)
 
 
 def main(argv=None) -> int:

@@ -6,13 +6,15 @@ import json
 import os
 import time
 from dataclasses import dataclass, field
-from typing import Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Union
+from typing import Callable, Iterable, List, Mapping, Optional, Sequence, Union
 
 import grpc
 import numpy as np
 from google.protobuf import json_format
 
 from pfem.v1 import model_pb2, service_pb2, service_pb2_grpc
+
+from .results import Result
 
 ModelLike = Union[str, os.PathLike, Mapping, model_pb2.Model]
 
@@ -58,25 +60,6 @@ def load_model(model: ModelLike) -> model_pb2.Model:
 
 
 @dataclass
-class Result:
-    """A job's result: histories as numpy arrays (one entry per sample time)."""
-
-    time: np.ndarray
-    responses: Dict[str, np.ndarray]
-    sensitivity_time: np.ndarray
-    sensitivities: Dict[str, np.ndarray]  # keys "d<recorder>/d<param>"
-    summary: service_pb2.Summary
-    job: service_pb2.Job
-
-    def sensitivity(self, recorder: str, param: str) -> np.ndarray:
-        return self.sensitivities[f"d{recorder}/d{param}"]
-
-    @property
-    def parameters(self) -> List[str]:
-        return list(self.summary.parameters)
-
-
-@dataclass
 class Evaluation:
     """Evaluate's answer: values[i] and gradients[i, k] = d values[i] / d parameters[k]."""
 
@@ -94,6 +77,43 @@ class Evaluation:
         """(value, gradient) of the functional called `name`."""
         i = self.names.index(name)
         return self.values[i], self.gradients[i]
+
+
+_STATE_PREFIX = "JOB_STATE_"
+
+
+class Job:
+    """A job as the server reports it. `state` is a name: "QUEUED", "RUNNING", "SUCCEEDED",
+    "FAILED" or "CANCELLED"; every other field is the pfem.v1.Job message's (`job.progress.step`,
+    `job.error.message`, ...), and `message` is that message."""
+
+    def __init__(self, message: service_pb2.Job):
+        self.message = message
+
+    @property
+    def state(self) -> str:
+        return service_pb2.JobState.Name(self.message.state)[len(_STATE_PREFIX):]
+
+    @property
+    def finished(self) -> bool:
+        return self.message.state >= service_pb2.JOB_STATE_SUCCEEDED
+
+    def __getattr__(self, name):
+        return getattr(self.message, name)
+
+    def __repr__(self):
+        return f"Job(id={self.message.id!r}, state={self.state}, step={self.message.progress.step})"
+
+
+def _state_number(state: Union[str, int, None]) -> int:
+    """A JobState from its name ("RUNNING", case-insensitive) or number; None = every state."""
+    if state is None or isinstance(state, int):
+        return state or 0
+    try:
+        return service_pb2.JobState.Value(_STATE_PREFIX + state.upper())
+    except ValueError:
+        names = [n[len(_STATE_PREFIX):] for n in service_pb2.JobState.keys()][1:]
+        raise ValueError(f"job state {state!r}: expected one of {', '.join(names)}") from None
 
 
 def _functional(spec) -> service_pb2.Functional:
@@ -187,23 +207,25 @@ class Client:
             request.timeout_seconds = timeout_seconds
         return self._call(self._stub.SubmitJob, request).job_id
 
-    def get_job(self, job_id: str) -> service_pb2.Job:
-        return self._call(self._stub.GetJob, service_pb2.JobRequest(job_id=job_id))
+    def get_job(self, job_id: str) -> Job:
+        return Job(self._call(self._stub.GetJob, service_pb2.JobRequest(job_id=job_id)))
 
-    def cancel(self, job_id: str) -> service_pb2.Job:
-        return self._call(self._stub.CancelJob, service_pb2.JobRequest(job_id=job_id))
+    def cancel(self, job_id: str) -> Job:
+        return Job(self._call(self._stub.CancelJob, service_pb2.JobRequest(job_id=job_id)))
 
-    def list_jobs(self, state: int = 0, limit: int = 0) -> List[service_pb2.Job]:
-        return list(self._call(self._stub.ListJobs,
-                               service_pb2.ListJobsRequest(state=state, limit=limit)).jobs)
+    def list_jobs(self, state: Union[str, int, None] = None, limit: int = 0) -> List[Job]:
+        """Jobs in `state` (a name such as "RUNNING"; None: every state), newest first."""
+        request = service_pb2.ListJobsRequest(state=_state_number(state), limit=limit)
+        return [Job(j) for j in self._call(self._stub.ListJobs, request).jobs]
 
-    def watch(self, job_id: str, callback: Optional[Callable[[service_pb2.Job], None]] = None,
-              timeout: Optional[float] = None) -> service_pb2.Job:
+    def watch(self, job_id: str, callback: Optional[Callable[[Job], None]] = None,
+              timeout: Optional[float] = None) -> Optional[Job]:
         """Follows the job to its end; returns the final Job (state SUCCEEDED, FAILED, ...)."""
         job = None
         try:
-            for job in self._stub.WatchJob(service_pb2.JobRequest(job_id=job_id),
-                                           metadata=self._metadata, timeout=timeout):
+            for message in self._stub.WatchJob(service_pb2.JobRequest(job_id=job_id),
+                                               metadata=self._metadata, timeout=timeout):
+                job = Job(message)
                 if callback:
                     callback(job)
         except grpc.RpcError as e:
@@ -247,7 +269,8 @@ class Client:
             responses={n: join(c) for n, c in zip(header.response_columns, columns[r])},
             sensitivity_time=join(times[s]),
             sensitivities={n: join(c) for n, c in zip(header.sensitivity_columns, columns[s])},
-            summary=header.summary, job=header.job)
+            summary=summary_dict(header.summary), name=header.job.model_name,
+            job=Job(header.job))
 
     def put_model(self, model: ModelLike) -> str:
         return self._call(self._stub.PutModel,
@@ -301,6 +324,13 @@ class Client:
 
 
 def summary_dict(summary: service_pb2.Summary) -> dict:
-    """The summary as a plain dict (field names as in summary.json)."""
-    return json.loads(json_format.MessageToJson(summary, preserving_proto_field_name=True,
-                                                including_default_value_fields=True))
+    """The summary as a dict with the keys and values of summary.json (status "completed",
+    parameters {name: value}, ...)."""
+    d = json.loads(json_format.MessageToJson(summary, preserving_proto_field_name=True,
+                                             including_default_value_fields=True))
+    d["status"] = service_pb2.RunStatus.Name(summary.status)[len("RUN_STATUS_"):].lower()
+    d["parameters"] = dict(zip(summary.parameters, summary.parameter_values))
+    del d["parameter_values"]
+    for key in ("newton_iterations", "factorizations"):  # int64 fields come as JSON strings
+        d[key] = int(d[key])
+    return d

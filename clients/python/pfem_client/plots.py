@@ -34,7 +34,7 @@ def plot_histories(result, out_dir: str) -> List[str]:
             ax.set_title(label, fontsize=10)
             ax.set_xlabel("t [s]")
             ax.grid(alpha=0.3)
-        fig.suptitle(f"{result.job.model_name or 'model'}: {name}", fontsize=11)
+        fig.suptitle(f"{result.name or 'model'}: {name}", fontsize=11)
         fig.tight_layout()
         path = os.path.join(out_dir, f"{name}.png")
         fig.savefig(path, dpi=110)

@@ -94,7 +94,11 @@ class ClientTest(unittest.TestCase):
         updates = []
         job = self.client.watch(job_id, callback=updates.append)
         self.assertGreaterEqual(len(updates), 1)
-        self.assertEqual(job.state, 3, job.error.message)  # JOB_STATE_SUCCEEDED
+        self.assertEqual(job.state, "SUCCEEDED", job.error.message)
+        self.assertEqual([j.id for j in self.client.list_jobs("succeeded")].count(job_id), 1)
+        self.assertNotIn(job_id, [j.id for j in self.client.list_jobs("RUNNING")])
+        with self.assertRaises(ValueError):
+            self.client.list_jobs("DONE")
         self.assertEqual(job.progress.step, 5)
 
         result = self.client.result(job_id)
@@ -102,7 +106,9 @@ class ClientTest(unittest.TestCase):
         self.assertEqual(sorted(result.responses), ["bottom_p", "fluid_area", "front_x"])
         self.assertEqual(len(result.sensitivities), 6)
         self.assertEqual(result.parameters, ["rho_f", "kappa"])
-        self.assertEqual(result.summary.parameter_values[0], 1005.0)
+        self.assertEqual(result.summary["parameters"]["rho_f"], 1005.0)
+        self.assertEqual(result.status, "completed")
+        self.assertEqual(result.summary["steps"], 5)
         p = result.responses["bottom_p"]
         self.assertTrue(np.all(np.isfinite(p)))
 
@@ -162,7 +168,7 @@ class ClientTest(unittest.TestCase):
         self.assertEqual(sorted(ids), ["ddm", "fdm"], text)
 
         served = self.client.result(ids["ddm"])
-        self.assertEqual(served.summary.sensitivity_method, "ddm")
+        self.assertEqual(served.method, "ddm")
         self.assertEqual(served.parameters, ["E", "rho_f"])
         local = os.path.join(self.tmp, "sloshing-cli")
         subprocess.run([os.environ["PFEM_CLI"], "run", model, "--out", local, "--t-end",

@@ -1,0 +1,73 @@
+#include "engine/analysis/field_probes.h"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <utility>
+
+namespace pfem {
+namespace {
+
+// Forward-mode dual number: a value and its derivative along one parameter.
+struct Dual {
+  double v = 0.0, d = 0.0;
+};
+Dual operator+(Dual a, Dual b) { return {a.v + b.v, a.d + b.d}; }
+Dual operator-(Dual a, Dual b) { return {a.v - b.v, a.d - b.d}; }
+Dual operator*(Dual a, Dual b) { return {a.v * b.v, a.d * b.v + a.v * b.d}; }
+Dual operator/(Dual a, Dual b) { return {a.v / b.v, (a.d * b.v - a.v * b.d) / (b.v * b.v)}; }
+
+// A node's coordinate or pressure with its sensitivity to parameter k (none for k < 0).
+Dual field(const NodeState& nodes, int i, int which, int k) {
+  const double value = which == NodeState::kDx ? nodes.x[i] : which == NodeState::kDy ? nodes.y[i] : nodes.p[i];
+  return {value, k >= 0 ? nodes.sensitivity(i, k)[which] : 0.0};
+}
+
+}  // namespace
+
+double wave_gauge(const mesh::FluidMesh& mesh, const NodeState& nodes, double x, int k) {
+  // Boundary edges: those of one kept triangle only.
+  std::map<std::pair<std::int32_t, std::int32_t>, int> uses;
+  for (const auto& t : mesh.triangles)
+    for (int e = 0; e < 3; ++e) ++uses[std::minmax(t[e], t[(e + 1) % 3])];
+  int best_a = -1, best_b = -1;
+  double best_y = 0.0;
+  for (const auto& [edge, count] : uses) {
+    const auto [a, b] = edge;
+    if (count != 1 || !mesh.free_surface[a] || !mesh.free_surface[b]) continue;
+    if (nodes.kind[a] != mesh::NodeKind::Fluid && nodes.kind[b] != mesh::NodeKind::Fluid) continue;
+    const double xa = nodes.x[a], xb = nodes.x[b];
+    if (!((xa <= x && x < xb) || (xb <= x && x < xa))) continue;  // half-open: a node is crossed once
+    const double y = nodes.y[a] + (x - xa) / (xb - xa) * (nodes.y[b] - nodes.y[a]);
+    if (best_a < 0 || y > best_y) best_a = a, best_b = b, best_y = y;
+  }
+  if (best_a < 0) return 0.0;
+  const Dual xa = field(nodes, best_a, NodeState::kDx, k), ya = field(nodes, best_a, NodeState::kDy, k);
+  const Dual xb = field(nodes, best_b, NodeState::kDx, k), yb = field(nodes, best_b, NodeState::kDy, k);
+  const Dual y = ya + (Dual{x, 0.0} - xa) / (xb - xa) * (yb - ya);
+  return k < 0 ? y.v : y.d;
+}
+
+double pressure_at(const mesh::FluidMesh& mesh, const NodeState& nodes, double x, double y, int k) {
+  for (const auto& t : mesh.triangles) {
+    std::array<Dual, 3> px, py;
+    for (int a = 0; a < 3; ++a) px[a] = field(nodes, t[a], NodeState::kDx, k), py[a] = field(nodes, t[a], NodeState::kDy, k);
+    // Barycentric coordinates: the signed areas of the sub-triangles opposite each corner.
+    const Dual X{x, 0.0}, Y{y, 0.0};
+    const auto twice_area = [](Dual ax, Dual ay, Dual bx, Dual by, Dual cx, Dual cy) {
+      return (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
+    };
+    const Dual whole = twice_area(px[0], py[0], px[1], py[1], px[2], py[2]);
+    const std::array<Dual, 3> part{twice_area(X, Y, px[1], py[1], px[2], py[2]),
+                                   twice_area(px[0], py[0], X, Y, px[2], py[2]),
+                                   twice_area(px[0], py[0], px[1], py[1], X, Y)};
+    const double tolerance = -1e-12 * whole.v;
+    if (!(whole.v > 0.0) || part[0].v < tolerance || part[1].v < tolerance || part[2].v < tolerance) continue;
+    Dual p;
+    for (int a = 0; a < 3; ++a) p = p + part[a] / whole * field(nodes, t[a], NodeState::kDp, k);
+    return k < 0 ? p.v : p.d;
+  }
+  return 0.0;
+}
+
+}  // namespace pfem

@@ -1,0 +1,37 @@
+#pragma once
+// What `pfem validate` says about a valid model beyond its errors: warnings for values that
+// are allowed but implausible (they validate and then fail, or lose water, later), and an
+// estimate of the run's size and time.
+#include <vector>
+
+#include "engine/io/model_io.h"
+#include "pfem/v1/model.pb.h"
+
+namespace pfem {
+
+// Plausibility limits of the warnings.
+inline constexpr double kMinPlausibleDensity = 100.0;     // [kg/m^3]
+inline constexpr double kMaxPlausibleDensity = 30'000.0;  // [kg/m^3]
+inline constexpr double kMinSoundToFlowSpeed = 10.0;      // sqrt(kappa/rho) against sqrt(2 g H)
+
+// Warnings, each naming the field, for a model without errors (fields it cannot read are
+// skipped): a fluid density outside [100, 30000] kg/m^3; a speed of sound sqrt(kappa/rho)
+// below 10 times the expected flow speed U = sqrt(2 g H) (H the height of the water); a dt
+// above h / U (a particle at speed U crossing more than one spacing per step); a beam whose
+// deflection as a cantilever under the hydrostatic load of min(H, L) of water exceeds its
+// length L; a recorder point farther than h from every fluid region and from the structure.
+std::vector<FieldError> model_warnings(const pfem::v1::Model& model);
+
+struct RunEstimate {
+  long particles = 0;                 // at t = 0 (estimate_particles)
+  long elements = 0;                  // fluid triangles, about 2 per particle
+  long steps = 0;                     // to t_end
+  double seconds = 0.0;               // response only, one thread
+  double seconds_per_particle_step = 0.0;  // measured on this machine
+};
+
+// The run's size, and its time from this machine's speed, measured on a small reference dam
+// break (about 0.1 s the first time; the figure is kept for later calls in the process).
+RunEstimate estimate_run(const pfem::v1::Model& model);
+
+}  // namespace pfem

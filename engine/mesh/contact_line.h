@@ -1,0 +1,47 @@
+#pragma once
+// Where the free surface meets a wall (the contact line). A wall is a polyline of fixed nodes at
+// a spacing of about h; the water's surface reaches the wall at its own height, which is in
+// general between two wall nodes. The free edge from the last surface particle then ends at a
+// wall node up to h above or below the water: its p = 0 sits at the wrong height, the pressure
+// near the wall cannot be hydrostatic, and still water next to the wall starts to move (it sinks
+// there, and at water's viscosity the surface breaks up). A no-slip or slip wall is the same at
+// every point of its line, so which of its points are nodes is free: before each remeshing the
+// wall node nearest the foot of a contact particle slides along its straight wall piece to that
+// foot, and every other node returns to its place. The surface then meets the wall at the
+// particle's height, square to the wall, as a film of water does where it wets a wall at rest.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/mesh/remesher.h"
+
+namespace pfem::mesh {
+
+// A wall node inside a straight wall piece (not a corner or an end): it may slide along the
+// piece by less than half the spacing to its neighbours, so it never reaches them.
+struct SlidingWallNode {
+  std::int32_t node = -1;
+  double home_x = 0.0, home_y = 0.0;  // its place on the wall line
+  double tx = 0.0, ty = 0.0;          // unit tangent of the wall piece
+  double reach = 0.0;                 // largest slide either way [m]
+};
+
+// Where a sliding node goes: node at home + offset * tangent, following particle's position.
+struct WallSlide {
+  std::int32_t node = -1;
+  std::int32_t particle = -1;
+  double offset = 0.0;
+};
+
+// The slides for the contact edges of the previous mesh (FluidMesh::contact_edges: a free edge
+// between a particle and a wall node), at the current particle positions x, y. For each contact
+// edge in order, of the sliding nodes among the wall node itself and its wall neighbours
+// (neighbours[wall]: indices into `sliding`) whose reach covers the particle's foot on their
+// line, the one nearest the foot slides there; a node takes the first contact that claims it.
+// Deterministic.
+std::vector<WallSlide> contact_line_slides(const FluidMesh& previous, std::span<const double> x,
+                                           std::span<const double> y, std::span<const SlidingWallNode> sliding,
+                                           const std::vector<std::vector<int>>& neighbours);
+
+}  // namespace pfem::mesh
