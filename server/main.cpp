@@ -2,7 +2,8 @@
 //   pfem-server --listen 127.0.0.1:50051 --data-dir /var/lib/pfem [--token-file tokens]
 // Prints "pfem-server listening on HOST:PORT" on stdout once it accepts calls (with
 // --listen HOST:0 the port is chosen by the system; with --umbridge-listen, a line
-// "pfem-server UM-Bridge on http://HOST:PORT" comes first). SIGTERM or SIGINT drains it.
+// "pfem-server UM-Bridge on http://HOST:PORT" comes first), then "pfem-server health on
+// HOST:PORT" with --health-listen. SIGTERM or SIGINT drains it.
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -33,6 +34,11 @@ int main(int argc, char** argv) {
       std::cout << "pfem-server UM-Bridge on http://" << server.umbridge_address() << std::endl;
     }
     std::cout << "pfem-server listening on " << server.address() << std::endl;
+    if (server.health_port() != 0) {
+      const auto& h = options.health_listen;
+      std::cout << "pfem-server health on " << h.substr(0, h.rfind(':')) << ":"
+                << server.health_port() << std::endl;
+    }
     int signal = 0;
     sigwait(&stop_signals, &signal);
     std::cerr << "pfem-server: " << (signal == SIGTERM ? "SIGTERM" : "SIGINT")

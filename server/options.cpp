@@ -12,7 +12,8 @@ const char* const kServerUsage =
     "                   [--tls-cert F --tls-key F] [--max-queued N] [--max-particles N]\n"
     "                   [--max-steps N] [--max-message-mb N] [--grace-seconds S]\n"
     "                   [--cache-entries N] [--max-store-mb N] [--max-geometry-points N]\n"
-    "                   [--max-fiber-points N] [--reflection]\n"
+    "                   [--max-fiber-points N] [--reflection] [--health-listen HOST:PORT]\n"
+    "                   [--max-connection-age S]\n"
     "                   [--umbridge-listen HOST:PORT [--umbridge-model NAME=FILE ...]]\n";
 
 std::vector<std::string> ServerOptions::validate() const {
@@ -35,6 +36,17 @@ std::vector<std::string> ServerOptions::validate() const {
   }
   if (!(grace_seconds >= 0.0) || !std::isfinite(grace_seconds)) {
     errors.push_back("--grace-seconds: must be >= 0");
+  }
+  if (!health_listen.empty() && health_listen.find(':') == std::string::npos) {
+    errors.push_back("--health-listen: must be HOST:PORT");
+  }
+  const bool any_port = listen.size() > 2 && listen.compare(listen.size() - 2, 2, ":0") == 0;
+  if (!health_listen.empty() && health_listen == listen && !any_port) {
+    errors.push_back("--health-listen: must differ from --listen");
+  }
+  if (!(max_connection_age_seconds >= 0.0) || !std::isfinite(max_connection_age_seconds) ||
+      max_connection_age_seconds > 2147483.0) {
+    errors.push_back("--max-connection-age: must be in [0, 2147483] seconds (0 = never)");
   }
   if (!umbridge_listen.empty() && umbridge_listen.find(':') == std::string::npos) {
     errors.push_back("--umbridge-listen: must be HOST:PORT");
@@ -70,6 +82,8 @@ ServerOptions parse_server_options(const std::vector<std::string>& args) {
   if (auto v = a.take_double("--max-geometry-points")) o.limits.max_geometry_points = static_cast<long>(*v);
   if (auto v = a.take_double("--max-fiber-points")) o.limits.max_fiber_points = static_cast<long>(*v);
   if (auto v = a.take_double("--grace-seconds")) o.grace_seconds = *v;
+  if (auto v = a.take_string("--health-listen")) o.health_listen = *v;
+  if (auto v = a.take_double("--max-connection-age")) o.max_connection_age_seconds = *v;
   if (auto v = a.take_int("--cache-entries")) {
     if (*v < 0) throw std::invalid_argument("--cache-entries: must be >= 0");
     o.cache_entries = static_cast<std::size_t>(*v);

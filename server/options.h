@@ -23,6 +23,13 @@ struct ServerOptions {
   std::size_t cache_entries = 256;         // --cache-entries N: Evaluate runs kept in memory
   long long max_store_mb = 0;              // --max-store-mb N: cap on the database; 0 = none
   bool reflection = false;                 // --reflection: serve gRPC reflection (the schema)
+  // --health-listen HOST:PORT: a second, plaintext port serving only grpc.health.v1.Health
+  // (no token), for Kubernetes' native gRPC probes; empty = none.
+  std::string health_listen;
+  // --max-connection-age S: connections are asked to go away (GOAWAY) after S seconds, so that
+  // clients balancing over a DNS name re-resolve and find replicas added by scaling; calls in
+  // progress finish first. 0 = never.
+  double max_connection_age_seconds = 0.0;
   std::string umbridge_listen;             // --umbridge-listen HOST:PORT: UM-Bridge 1.0 HTTP; empty = off
   // --umbridge-model NAME=FILE (repeatable): models served under NAME over UM-Bridge
   std::vector<std::pair<std::string, std::filesystem::path>> umbridge_models;

@@ -96,6 +96,10 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
   const int max_bytes = options_.limits.max_message_mb * 1024 * 1024;
   builder.SetMaxReceiveMessageSize(max_bytes);
   builder.SetMaxSendMessageSize(max_bytes);
+  if (options_.max_connection_age_seconds > 0) {
+    builder.AddChannelArgument(GRPC_ARG_MAX_CONNECTION_AGE_MS,
+                               static_cast<int>(options_.max_connection_age_seconds * 1000.0));
+  }
   jobs_->start();  // before the first call can queue a job
   server_ = builder.BuildAndStart();
   if (!server_ || port_ == 0) {
@@ -118,8 +122,31 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
       throw;
     }
   }
-  server_->GetHealthCheckService()->SetServingStatus(true);
-  server_->GetHealthCheckService()->SetServingStatus(pfem::v1::GradientService::service_full_name(), true);
+  if (!options_.health_listen.empty()) start_health_server();
+  for (grpc::Server* s : {server_.get(), health_server_.get()}) {
+    if (!s) continue;
+    s->GetHealthCheckService()->SetServingStatus(true);
+    s->GetHealthCheckService()->SetServingStatus(pfem::v1::GradientService::service_full_name(), true);
+  }
+  if (health_server_) health_server_->GetHealthCheckService()->SetServingStatus(kLivenessService, true);
+}
+
+// A server with no service of its own: gRPC's default health service is all it answers
+// (the reflection plugin, enabled process-wide, lists just that), plaintext and without the
+// token check, which lives in GradientService.
+void Server::start_health_server() {
+  grpc::ServerBuilder builder;
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
+  builder.AddListeningPort(options_.health_listen, grpc::InsecureServerCredentials(), &health_port_);
+  health_server_ = builder.BuildAndStart();
+  if (!health_server_ || health_port_ == 0) {
+    server_->Shutdown(std::chrono::system_clock::now());
+    server_->Wait();
+    if (umbridge_) umbridge_->stop();
+    jobs_->stop(std::chrono::steady_clock::now());
+    shut_down_ = true;
+    throw std::runtime_error("--health-listen: cannot listen on " + options_.health_listen);
+  }
 }
 
 Server::~Server() { shutdown(); }
@@ -141,6 +168,11 @@ void Server::shutdown() {
   };
   // Stop accepting: health NOT_SERVING, new calls UNAVAILABLE, queued jobs stay queued.
   server_->GetHealthCheckService()->SetServingStatus(false);  // every service
+  if (health_server_) {  // "liveness" stays SERVING: a draining server is alive, not ready
+    auto* health = health_server_->GetHealthCheckService();
+    health->SetServingStatus("", false);
+    health->SetServingStatus(pfem::v1::GradientService::service_full_name(), false);
+  }
   service_->begin_drain();
   if (umbridge_) umbridge_->begin_drain();
   jobs_->begin_drain();
@@ -158,6 +190,10 @@ void Server::shutdown() {
   jobs_->stop(std::chrono::steady_clock::now());
   server_->Wait();
   if (umbridge_) umbridge_->stop();  // its calls have ended: their runs were cancelled
+  if (health_server_) {
+    health_server_->Shutdown(std::chrono::system_clock::now());
+    health_server_->Wait();
+  }
   std::fprintf(stderr, "pfem-server: drained in %.3f s (%d calls and %ld jobs were cut short)\n",
                since(), calls, jobs);
 }

@@ -1,7 +1,10 @@
 #include "clients/cli/client.h"
 
+#include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <stdexcept>
+#include <thread>
 
 namespace pfem::client {
 
@@ -27,7 +30,20 @@ std::shared_ptr<grpc::Channel> make_channel(const ConnectionOptions& options) {
   }
   grpc::ChannelArguments args;
   args.SetMaxReceiveMessageSize(options.max_message_mb * 1024 * 1024);
+  args.SetLoadBalancingPolicyName("round_robin");
   return grpc::CreateCustomChannel(options.server, credentials, args);
+}
+
+grpc::Status call_with_retries(const std::function<grpc::Status()>& attempt, int max_attempts,
+                               int* retries) {
+  double wait = 0.1;
+  for (int k = 1;; ++k) {
+    const grpc::Status status = attempt();
+    if (status.error_code() != grpc::StatusCode::UNAVAILABLE || k >= max_attempts) return status;
+    if (retries) ++*retries;
+    std::this_thread::sleep_for(std::chrono::duration<double>(wait));
+    wait = std::min(2.0 * wait, 2.0);
+  }
 }
 
 void authorize(grpc::ClientContext& context, const ConnectionOptions& options) {

@@ -1,5 +1,8 @@
 // pfemctl: the command-line client of pfem-server.
-//   pfemctl --server HOST:PORT [--token-file F] [--tls-ca F] COMMAND ...
+//   pfemctl --server TARGET [--token-file F] [--tls-ca F] COMMAND ...
+// TARGET: HOST:PORT, dns:///NAME:PORT or ipv4:A:P,B:P (round_robin over the addresses). Jobs
+// live on the replica that took the SubmitJob: watch/result/cancel them through its own
+// HOST:PORT; evaluate works through any target (retried on UNAVAILABLE).
 //     validate MODEL
 //     submit MODEL [--t-end T] [--dt DT] [--sensitivity none|ddm|fdm] [--params a,b]
 //                  [--fdm-eps E] [--param name=value ...] [--timeout S]
@@ -35,7 +38,9 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: pfemctl --server HOST:PORT [--token-file F] [--tls-ca F] COMMAND ...\n"
+    "usage: pfemctl --server TARGET [--token-file F] [--tls-ca F] COMMAND ...\n"
+    "TARGET: HOST:PORT, dns:///NAME:PORT or ipv4:A:P,B:P (round_robin over the replicas;\n"
+    "jobs stay on the replica that took them, evaluate is retried on UNAVAILABLE)\n"
     "  validate MODEL\n"
     "  submit MODEL [--t-end T] [--dt DT] [--sensitivity none|ddm|fdm] [--params a,b]\n"
     "               [--fdm-eps E] [--param name=value ...] [--timeout S]\n"
@@ -264,13 +269,18 @@ class Ctl {
     const auto timeout = a.take_double("--timeout");
     a.expect_done(2);
     *request.mutable_model() = load_model(a.positional(1));
-    auto context = make_context();
-    if (timeout) {
-      context->set_deadline(std::chrono::system_clock::now() +
-                            std::chrono::milliseconds(static_cast<long>(*timeout * 1000)));
-    }
     pfem::v1::EvaluateResponse response;
-    check(stub_->Evaluate(context.get(), request, &response));
+    // Evaluate gives the same answer on every replica: retried when one is UNAVAILABLE.
+    check(pfem::client::call_with_retries(
+        [&] {
+          auto context = make_context();
+          if (timeout) {
+            context->set_deadline(std::chrono::system_clock::now() +
+                                  std::chrono::milliseconds(static_cast<long>(*timeout * 1000)));
+          }
+          return stub_->Evaluate(context.get(), request, &response);
+        },
+        5));
     std::printf("%-24s %24s %12s", "functional", "value", "time");
     for (const auto& p : response.parameters()) std::printf(" %24s", ("d/d" + p).c_str());
     std::printf("\n");
@@ -370,7 +380,7 @@ int main(int argc, char** argv) {
     }
     pfem::client::ConnectionOptions options;
     const auto server = a.take_string("--server");
-    if (!server) throw UsageError("--server HOST:PORT is required");
+    if (!server) throw UsageError("--server TARGET is required");
     options.server = *server;
     if (auto f = a.take_string("--token-file")) options.token = pfem::client::read_token_file(*f);
     if (auto f = a.take_string("--tls-ca")) options.tls_ca_pem = read_text(*f, "--tls-ca");

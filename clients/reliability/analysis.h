@@ -1,6 +1,7 @@
 #pragma once
 // One reliability analysis of a built problem: FORM, the sensitivities of beta to the
-// moments, and on request SORM, importance sampling at the design point and crude Monte Carlo.
+// moments, and on request SORM, importance sampling at the design point, crude Monte Carlo and
+// subset simulation; their independent evaluations of g run `concurrency` at a time.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "clients/reliability/sampling.h"
 #include "clients/reliability/sensitivity.h"
 #include "clients/reliability/sorm.h"
+#include "clients/reliability/subset_simulation.h"
 
 namespace pfem::reliability {
 
@@ -22,7 +24,9 @@ struct AnalysisOptions {
   SormOptions sorm_options;
   std::int64_t importance_sampling = 0;    // samples; 0: none
   std::int64_t monte_carlo = 0;            // samples; 0: none
-  std::uint64_t seed = 1;                  // of both sampling methods
+  std::int64_t subset_simulation = 0;      // samples per level; 0: none
+  std::uint64_t seed = 1;                  // of the sampling methods
+  int concurrency = 1;                     // evaluations of g at once (sampling, SORM)
 
   // Every invalid setting, with paths such as "form.max_iterations" or "monte_carlo".
   std::vector<FieldError> validate() const;
@@ -37,6 +41,7 @@ struct AnalysisResult {
   std::optional<SormResult> sorm;
   std::optional<SamplingResult> importance_sampling;
   std::optional<SamplingResult> monte_carlo;
+  std::optional<SubsetResult> subset_simulation;
   std::optional<SimulationStats> simulations;    // model limit states: the PFEM runs behind g
   double wall_seconds = 0.0;
 };

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "clients/cli/client.h"
+#include "clients/reliability/parallel.h"
 #include "engine/analysis/run.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
@@ -52,28 +53,24 @@ class LocalEvaluator final : public ModelEvaluator {
 
   std::string where() const override { return "in-process"; }
 
-  ModelEvaluation evaluate(const std::vector<std::string>& params, std::span<const double> values,
-                           const std::vector<FunctionalSpec>& functionals,
-                           bool gradient) const override {
-    const auto start = Clock::now();
+  ModelEvaluation run(const std::vector<std::string>& params, std::span<const double> values,
+                      const std::vector<FunctionalSpec>& functionals,
+                      bool gradient) const override {
     pfem::RunOptions o;
     o.t_end = options_.t_end;
     o.threads = options_.threads;
-    o.fdm_eps = options_.fdm_eps;
     if (gradient) {
-      o.sensitivity = options_.gradients == GradientMethod::kDdm ? pfem::SensitivityMethod::kDdm
-                                                                 : pfem::SensitivityMethod::kFdm;
+      o.sensitivity = pfem::SensitivityMethod::kDdm;
       o.params = params;
     }
     pfem::RunResult r;
     try {
       r = pfem::run(with_values(model_, params, values), o);
     } catch (const pfem::ModelError& e) {
-      count(gradient, params.size(), false, seconds_since(start));
       throw ModelEvaluationError("the model is invalid at " + describe_values(params, values) +
                                  ": " + join_errors(e.errors(), "model"));
     }
-    count(gradient, params.size(), false, seconds_since(start));
+    count_run(false);
     if (r.summary.status != pfem::RunStatus::kCompleted) {
       throw ModelEvaluationError("the simulation failed at step " +
                                  std::to_string(r.summary.failed_step) + " (t = " +
@@ -92,11 +89,6 @@ class LocalEvaluator final : public ModelEvaluator {
       }
     }
     return out;
-  }
-
- private:
-  static double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
   }
 };
 
@@ -130,12 +122,16 @@ class RemoteEvaluator final : public ModelEvaluator {
     connection_.token = options_.token;
     stub_ = pfem::v1::GradientService::NewStub(pfem::client::make_channel(connection_));
     {  // The server's own validation (it may have limits the local one does not know).
-      grpc::ClientContext context;
-      prepare(context, 60.0);
       pfem::v1::ValidateModelRequest request;
       *request.mutable_model() = model_;
       pfem::v1::ValidateModelResponse response;
-      const auto status = stub_->ValidateModel(&context, request, &response);
+      const auto status = pfem::client::call_with_retries(
+          [&] {
+            grpc::ClientContext context;
+            prepare(context, 60.0);
+            return stub_->ValidateModel(&context, request, &response);
+          },
+          options_.max_attempts);
       if (!status.ok()) {
         throw ModelEvaluationError("server " + options_.server + ": " + status_text(status));
       }
@@ -148,12 +144,16 @@ class RemoteEvaluator final : public ModelEvaluator {
         throw ModelEvaluationError(text);
       }
     }
-    grpc::ClientContext context;
-    prepare(context, 60.0);
     pfem::v1::PutModelRequest request;
     *request.mutable_model() = model_;
     pfem::v1::PutModelResponse response;
-    const auto status = stub_->PutModel(&context, request, &response);
+    const auto status = pfem::client::call_with_retries(
+        [&] {
+          grpc::ClientContext context;
+          prepare(context, 60.0);
+          return stub_->PutModel(&context, request, &response);
+        },
+        options_.max_attempts);
     if (!status.ok()) {
       throw ModelEvaluationError("server " + options_.server + ": PutModel: " + status_text(status));
     }
@@ -162,10 +162,9 @@ class RemoteEvaluator final : public ModelEvaluator {
 
   std::string where() const override { return "server " + options_.server; }
 
-  ModelEvaluation evaluate(const std::vector<std::string>& params, std::span<const double> values,
-                           const std::vector<FunctionalSpec>& functionals,
-                           bool gradient) const override {
-    const auto start = Clock::now();
+  ModelEvaluation run(const std::vector<std::string>& params, std::span<const double> values,
+                      const std::vector<FunctionalSpec>& functionals,
+                      bool gradient) const override {
     pfem::v1::EvaluateRequest request;
     request.set_model_id(model_id_);
     for (std::size_t k = 0; k < params.size(); ++k) {
@@ -180,30 +179,38 @@ class RemoteEvaluator final : public ModelEvaluator {
       f->set_time(spec.time);
     }
     if (gradient) {
-      request.set_sensitivity(options_.gradients == GradientMethod::kDdm
-                                  ? pfem::v1::SENSITIVITY_METHOD_DDM
-                                  : pfem::v1::SENSITIVITY_METHOD_FDM);
+      request.set_sensitivity(pfem::v1::SENSITIVITY_METHOD_DDM);
       for (const auto& p : params) request.add_params(p);
-      request.set_fdm_eps(options_.fdm_eps);
     } else {
       request.set_sensitivity(pfem::v1::SENSITIVITY_METHOD_NONE);
     }
     if (options_.t_end) request.set_t_end(*options_.t_end);
-    grpc::ClientContext context;
-    prepare(context, options_.timeout_seconds);
     pfem::v1::EvaluateResponse response;
-    const auto status = stub_->Evaluate(&context, request, &response);
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    const auto call = [&] {
+      grpc::ClientContext context;
+      prepare(context, options_.timeout_seconds);
+      response.Clear();
+      return stub_->Evaluate(&context, request, &response);
+    };
+    int retries = 0;
+    grpc::Status status = pfem::client::call_with_retries(call, options_.max_attempts, &retries);
+    if (status.error_code() == grpc::StatusCode::NOT_FOUND) {
+      // The replica that answered never saw the PutModel (e.g. one added by scaling): the
+      // same request with the model itself.
+      *request.mutable_model() = model_;
+      status = pfem::client::call_with_retries(call, options_.max_attempts, &retries);
+    }
+    count_retries(retries);
     if (!status.ok()) {
       // A simulation failure is FAILED_PRECONDITION with the engine's message.
-      count(gradient, params.size(), false, seconds);
       const std::string at = " (" + describe_values(params, values) + ")";
       if (status.error_code() == grpc::StatusCode::FAILED_PRECONDITION) {
+        count_run(false);
         throw ModelEvaluationError(status.error_message() + at);
       }
       throw ModelEvaluationError("server " + options_.server + ": " + status_text(status) + at);
     }
-    count(gradient, params.size(), response.cached(), seconds);
+    count_run(response.cached());
     if (response.values_size() != static_cast<int>(functionals.size()) ||
         (gradient && response.parameters_size() != static_cast<int>(params.size()))) {
       throw ModelEvaluationError("server " + options_.server + ": malformed Evaluate response");
@@ -272,17 +279,70 @@ std::string ModelEvaluator::gradient_source() const {
   return method + ", " + where();
 }
 
-void ModelEvaluator::count(bool gradient, std::size_t params, bool cached, double seconds) const {
+std::vector<FieldError> EvaluatorOptions::validate() const {
+  std::vector<FieldError> errors;
+  if (!(fdm_eps > 0 && fdm_eps < 0.1)) errors.push_back({"fdm_eps", "must be in (0, 0.1)"});
+  if (t_end && !(std::isfinite(*t_end) && *t_end > 0)) errors.push_back({"t_end", "must be > 0"});
+  if (threads < 1) errors.push_back({"threads", "must be >= 1"});
+  if (concurrency < 1) errors.push_back({"concurrency", "must be >= 1"});
+  if (max_attempts < 1) errors.push_back({"max_attempts", "must be >= 1"});
+  return errors;
+}
+
+ModelEvaluation ModelEvaluator::evaluate(const std::vector<std::string>& params,
+                                         std::span<const double> values,
+                                         const std::vector<FunctionalSpec>& functionals,
+                                         bool gradient) const {
+  const auto start = Clock::now();
+  struct Timer {  // counts the call's time also when it throws
+    const Clock::time_point start;
+    std::atomic<long long>& total;
+    ~Timer() {
+      total += std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - start).count();
+    }
+  } timer{start, microseconds_};
   ++evaluations_;
   if (gradient) ++gradients_;
+  if (gradient && options_.gradients == GradientMethod::kFdm) {
+    return finite_differences(params, values, functionals);
+  }
+  return run(params, values, functionals, gradient);
+}
+
+// Central differences of the functionals, step eps |value| (eps where the value is 0), the
+// engine's rule; run 0 is the point itself (its values are the answer's values), runs 2k + 1
+// and 2k + 2 parameter k plus and minus its step. Every run is independent: `concurrency` at once.
+ModelEvaluation ModelEvaluator::finite_differences(const std::vector<std::string>& params,
+                                                   std::span<const double> values,
+                                                   const std::vector<FunctionalSpec>& functionals) const {
+  const std::size_t p = params.size();
+  std::vector<double> steps(p);
+  for (std::size_t k = 0; k < p; ++k) {
+    steps[k] = options_.fdm_eps * (values[k] != 0.0 ? std::abs(values[k]) : 1.0);
+  }
+  std::vector<ModelEvaluation> runs(2 * p + 1);
+  parallel_for(runs.size(), options_.concurrency, [&](std::size_t i) {
+    std::vector<double> x(values.begin(), values.end());
+    if (i > 0) x[(i - 1) / 2] += (i % 2 == 1 ? 1.0 : -1.0) * steps[(i - 1) / 2];
+    runs[i] = run(params, x, functionals, false);
+  });
+  ModelEvaluation out = std::move(runs[0]);
+  for (std::size_t f = 0; f < out.values.size(); ++f) {
+    out.values[f].gradient.resize(p);
+    for (std::size_t k = 0; k < p; ++k) {
+      out.values[f].gradient[k] =
+          (runs[2 * k + 1].values[f].value - runs[2 * k + 2].values[f].value) / (2.0 * steps[k]);
+    }
+  }
+  return out;
+}
+
+void ModelEvaluator::count_run(bool cached) const {
   if (cached) {
     ++cached_;
   } else {
-    simulations_ += (gradient && options_.gradients == GradientMethod::kFdm)
-                        ? static_cast<long long>(2 * params + 1)
-                        : 1;
+    ++simulations_;
   }
-  microseconds_ += static_cast<long long>(seconds * 1e6);
 }
 
 SimulationStats ModelEvaluator::stats() const {
@@ -291,6 +351,7 @@ SimulationStats ModelEvaluator::stats() const {
   s.gradient_evaluations = gradients_;
   s.simulations = simulations_;
   s.cached = cached_;
+  s.retries = retries_;
   s.seconds = static_cast<double>(microseconds_.load()) * 1e-6;
   return s;
 }
@@ -301,8 +362,10 @@ std::unique_ptr<ModelEvaluator> make_evaluator(const pfem::v1::Model& model,
   if (const auto errors = pfem::validate_model(model); !errors.empty()) {
     throw ModelEvaluationError(join_errors(errors, path));
   }
-  if (options.t_end && !(std::isfinite(*options.t_end) && *options.t_end > 0)) {
-    throw ModelEvaluationError("t_end: must be > 0");
+  if (const auto errors = options.validate(); !errors.empty()) {
+    std::string text;
+    for (const auto& e : errors) text += (text.empty() ? "" : "\n") + e.to_string();
+    throw ModelEvaluationError(text);
   }
   if (options.server.empty()) return std::make_unique<LocalEvaluator>(model, options);
   return std::make_unique<RemoteEvaluator>(model, options, path);

@@ -4,9 +4,11 @@
 // interface:
 //   in-process   pfem::run (engine/analysis/run.h) + pfem::evaluate_functional
 //                (server/functional.h, library pfem_functional: the same code the server uses)
-//   --server     the gRPC Evaluate of a pfem-server (model stored once with PutModel)
-// Gradients by DDM (one run with the sensitivity solve) or by the engine's central finite
-// differences (FDM: 2P + 1 runs for P parameters); value-only calls run once without sensitivities.
+//   --server     the gRPC Evaluate of a pfem-server, or of several replicas behind one gRPC
+//                target (round_robin); the model is stored with PutModel and evaluated by id
+// Gradients by DDM (one run with the sensitivity solve) or by central finite differences (FDM:
+// 2P + 1 value-only runs for P parameters, `concurrency` of them at a time); value-only calls
+// run once without sensitivities.
 #include <atomic>
 #include <memory>
 #include <optional>
@@ -16,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "clients/reliability/errors.h"
 #include "clients/reliability/simulation_stats.h"
 #include "pfem/v1/model.pb.h"
 #include "server/functional.h"
@@ -30,13 +33,17 @@ std::string_view to_string(GradientMethod method);
 std::optional<FunctionalKind> parse_functional_name(std::string_view name);
 
 struct EvaluatorOptions {
-  std::string server;           // HOST:PORT of a pfem-server; empty: run in-process
+  std::string server;           // gRPC target of pfem-server(s); empty: run in-process
   std::string token;            // bearer token for the server (empty: none)
   GradientMethod gradients = GradientMethod::kDdm;
   double fdm_eps = 1e-7;        // relative step of the FDM
   std::optional<double> t_end;  // overrides the model's analysis.t_end
   int threads = 1;              // in-process: threads for the element loops
   double timeout_seconds = 3600.0;  // --server: deadline of one Evaluate call
+  int concurrency = 1;          // FDM: how many of the 2P + 1 runs go at once
+  int max_attempts = 5;         // --server: attempts of an Evaluate that fails UNAVAILABLE
+
+  std::vector<FieldError> validate() const;  // paths "concurrency", "max_attempts", ...
 };
 
 // A failed evaluation: the simulation failed (the engine's message, with step and time), the
@@ -58,10 +65,8 @@ class ModelEvaluator {
   // Sets the named model parameters to `values` (same order), runs, and evaluates the
   // functionals; with `gradient`, also d functional / d params[k]. Throws
   // ModelEvaluationError. Safe to call from several threads at once.
-  virtual ModelEvaluation evaluate(const std::vector<std::string>& params,
-                                   std::span<const double> values,
-                                   const std::vector<FunctionalSpec>& functionals,
-                                   bool gradient) const = 0;
+  ModelEvaluation evaluate(const std::vector<std::string>& params, std::span<const double> values,
+                           const std::vector<FunctionalSpec>& functionals, bool gradient) const;
   // "in-process" or "server HOST:PORT".
   virtual std::string where() const = 0;
   GradientMethod gradient_method() const { return options_.gradients; }
@@ -74,13 +79,23 @@ class ModelEvaluator {
  protected:
   ModelEvaluator(pfem::v1::Model model, EvaluatorOptions options)
       : model_(std::move(model)), options_(std::move(options)) {}
-  void count(bool gradient, std::size_t params, bool cached, double seconds) const;
+  // One run: values, and DDM gradients when `ddm_gradient`. Counts what it did.
+  virtual ModelEvaluation run(const std::vector<std::string>& params, std::span<const double> values,
+                              const std::vector<FunctionalSpec>& functionals,
+                              bool ddm_gradient) const = 0;
+  void count_run(bool cached) const;
+  void count_retries(int retries) const { retries_ += retries; }
 
   pfem::v1::Model model_;
   EvaluatorOptions options_;
 
  private:
+  ModelEvaluation finite_differences(const std::vector<std::string>& params,
+                                     std::span<const double> values,
+                                     const std::vector<FunctionalSpec>& functionals) const;
+
   mutable std::atomic<long long> evaluations_{0}, gradients_{0}, simulations_{0}, cached_{0};
+  mutable std::atomic<long long> retries_{0};
   mutable std::atomic<long long> microseconds_{0};
 };
 

@@ -347,6 +347,11 @@ std::vector<FieldError> check(const pfem::v1::ReliabilityProblem& msg, Problem* 
   }
   if (o.importance_sampling() < 0) errors.push_back({"options.importance_sampling", "must be >= 0"});
   if (o.monte_carlo() < 0) errors.push_back({"options.monte_carlo", "must be >= 0"});
+  if (o.subset_simulation() < 0) {
+    errors.push_back({"options.subset_simulation", "must be >= 0"});
+  } else if (o.subset_simulation() > 0 && o.subset_simulation() % 10 != 0) {
+    errors.push_back({"options.subset_simulation", "must be a multiple of 10 (p0 = 0.1)"});
+  }
 
   // The Nataf transformation, when everything it needs is valid.
   std::optional<NatafTransform> transform;

@@ -109,11 +109,28 @@ std::string result_json(const Problem& problem, const AnalysisResult& result,
     sampling(w, "importance_sampling", *result.importance_sampling, options.seed);
   }
   if (result.monte_carlo) sampling(w, "monte_carlo", *result.monte_carlo, options.seed);
+  if (result.subset_simulation) {
+    const SubsetResult& s = *result.subset_simulation;
+    w.key("subset_simulation").begin_object();
+    w.field("converged", s.converged).field("message", s.message);
+    w.field("samples_per_level", static_cast<long long>(options.subset_simulation));
+    w.field("pf", s.pf).field("cov", s.cov).field("beta", s.beta);
+    w.field("evaluations", static_cast<long long>(s.evaluations));
+    w.field("seed", static_cast<long long>(options.seed));
+    w.key("levels").begin_array();
+    for (const auto& l : s.levels) {
+      w.begin_object().field("threshold", l.threshold).field("probability", l.probability);
+      w.field("acceptance", l.acceptance).field("gamma", l.gamma).end_object();
+    }
+    w.end_array();
+    w.end_object();
+  }
   if (result.simulations) {
     const SimulationStats& s = *result.simulations;
     w.key("simulations").begin_object();
     w.field("evaluations", s.evaluations).field("gradient_evaluations", s.gradient_evaluations);
-    w.field("runs", s.simulations).field("cached", s.cached).field("seconds", s.seconds);
+    w.field("runs", s.simulations).field("cached", s.cached).field("retries", s.retries);
+    w.field("seconds", s.seconds).field("concurrency", options.concurrency);
     w.end_object();
   }
   w.field("wall_seconds", result.wall_seconds);
@@ -140,6 +157,7 @@ std::string summary_text(const Problem& problem, const AnalysisResult& result,
       out << f.evaluations << " by FORM, " << s.evaluations - f.evaluations << " after it by SORM or sampling; ";
     out << s.gradient_evaluations << " with gradients";
     if (s.cached > 0) out << ", " << s.cached << " answered from the server's cache";
+    if (s.retries > 0) out << ", " << s.retries << " calls retried after UNAVAILABLE";
     out << "), " << fmt("%.1f", s.seconds) << " s in the simulations\n";
   }
   if (!std::isfinite(f.beta)) {
@@ -182,9 +200,16 @@ std::string summary_text(const Problem& problem, const AnalysisResult& result,
         << fmt("%.6e", s.pf) << "   c.o.v. = " << fmt("%.4f", s.cov)
         << "   beta = " << fmt("%.6g", s.beta) << "\n";
   };
-  if (result.importance_sampling || result.monte_carlo) out << "\n";
+  if (result.importance_sampling || result.monte_carlo || result.subset_simulation) out << "\n";
   if (result.importance_sampling) sampled("IS    ", *result.importance_sampling);
   if (result.monte_carlo) sampled("MC    ", *result.monte_carlo);
+  if (result.subset_simulation) {
+    const SubsetResult& s = *result.subset_simulation;
+    out << "SuS   " << options.subset_simulation << " samples x " << s.levels.size()
+        << " levels (seed " << options.seed << "): pf = " << fmt("%.6e", s.pf)
+        << "   c.o.v. = " << fmt("%.4f", s.cov) << "   beta = " << fmt("%.6g", s.beta) << "\n";
+    if (!s.converged) out << "      " << s.message << "\n";
+  }
   return out.str();
 }
 

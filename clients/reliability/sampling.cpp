@@ -1,41 +1,15 @@
 #include "clients/reliability/sampling.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
-#include <random>
+
+#include "clients/reliability/parallel.h"
+#include "clients/reliability/random_stream.h"
 
 namespace pfem::reliability {
 
 namespace {
-
-// Standard normal variates by the Box-Muller transform over std::mt19937_64, so that a seed
-// gives the same numbers with every standard library (std::normal_distribution does not).
-class NormalSampler {
- public:
-  explicit NormalSampler(std::uint64_t seed) : engine_(seed) {}
-  double operator()() {
-    if (has_spare_) {
-      has_spare_ = false;
-      return spare_;
-    }
-    constexpr double scale = 1.0 / 18446744073709551616.0;  // 2^-64
-    double u1;
-    do {
-      u1 = static_cast<double>(engine_()) * scale;
-    } while (u1 <= 0.0);
-    const double u2 = static_cast<double>(engine_()) * scale;
-    const double r = std::sqrt(-2.0 * std::log(u1));
-    const double t = 2.0 * 3.14159265358979323846 * u2;
-    spare_ = r * std::sin(t);
-    has_spare_ = true;
-    return r * std::cos(t);
-  }
-
- private:
-  std::mt19937_64 engine_;
-  double spare_ = 0.0;
-  bool has_spare_ = false;
-};
 
 SamplingResult finish(std::int64_t n, std::int64_t failures, double sum, double sum_sq) {
   SamplingResult r;
@@ -51,8 +25,42 @@ SamplingResult finish(std::int64_t n, std::int64_t failures, double sum, double 
   return r;
 }
 
-void check(const SamplingOptions& options) {
+// Evaluates G at center + v_k for every sample k, v_k the standard normals of stream (seed, k),
+// in batches whose members run `concurrency` at a time, and sums the weights of the failures
+// in sample order (the same sums at every concurrency). weight(v) is the sample's weight.
+template <class Weight>
+SamplingResult sample(const LimitState& g, const NatafTransform& transform,
+                      const Eigen::VectorXd& center, const SamplingOptions& options, Weight weight) {
   if (auto errors = options.validate(); !errors.empty()) throw ProblemError(std::move(errors));
+  const int n = transform.size();
+  const std::int64_t batch = 256 * static_cast<std::int64_t>(options.concurrency);
+  std::vector<double> values(static_cast<std::size_t>(std::min(batch, options.samples)));
+  std::vector<Eigen::VectorXd> v(values.size(), Eigen::VectorXd(n));
+  std::int64_t failures = 0;
+  double sum = 0.0;
+  double sum_sq = 0.0;
+  std::int64_t evaluations = 0;
+  for (std::int64_t first = 0; first < options.samples; first += batch) {
+    const auto count = static_cast<std::size_t>(std::min(batch, options.samples - first));
+    parallel_for(count, options.concurrency, [&](std::size_t i) {
+      RandomStream stream(options.seed, static_cast<std::uint64_t>(first) + i);
+      for (int j = 0; j < n; ++j) v[i](j) = stream.normal();
+      StandardSpaceFunction G(g, transform);
+      values[i] = G.value(center + v[i]);
+    });
+    evaluations += static_cast<std::int64_t>(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      if (values[i] < 0) {
+        ++failures;
+        const double w = weight(v[i]);
+        sum += w;
+        sum_sq += w * w;
+      }
+    }
+  }
+  SamplingResult r = finish(options.samples, failures, sum, sum_sq);
+  r.evaluations = evaluations;
+  return r;
 }
 
 }  // namespace
@@ -60,51 +68,23 @@ void check(const SamplingOptions& options) {
 std::vector<FieldError> SamplingOptions::validate() const {
   std::vector<FieldError> errors;
   if (samples <= 0) errors.push_back({"samples", "must be > 0"});
+  if (concurrency < 1) errors.push_back({"concurrency", "must be >= 1"});
   return errors;
 }
 
 SamplingResult monte_carlo(const LimitState& g, const NatafTransform& transform,
                            const SamplingOptions& options) {
-  check(options);
-  StandardSpaceFunction G(g, transform);
-  NormalSampler normal(options.seed);
-  Eigen::VectorXd u(transform.size());
-  std::int64_t failures = 0;
-  for (std::int64_t k = 0; k < options.samples; ++k) {
-    for (int i = 0; i < u.size(); ++i) u(i) = normal();
-    if (G.value(u) < 0) ++failures;
-  }
-  const double f = static_cast<double>(failures);
-  SamplingResult r = finish(options.samples, failures, f, f);
-  r.evaluations = G.evaluations();
-  return r;
+  return sample(g, transform, Eigen::VectorXd::Zero(transform.size()), options,
+                [](const Eigen::VectorXd&) { return 1.0; });
 }
 
 SamplingResult importance_sampling(const LimitState& g, const NatafTransform& transform,
                                    const Eigen::VectorXd& design_u, const SamplingOptions& options) {
-  check(options);
-  StandardSpaceFunction G(g, transform);
-  NormalSampler normal(options.seed);
-  const int n = transform.size();
-  Eigen::VectorXd v(n);
-  std::int64_t failures = 0;
-  double sum = 0.0;
-  double sum_sq = 0.0;
   const double half_beta2 = 0.5 * design_u.squaredNorm();
-  for (std::int64_t k = 0; k < options.samples; ++k) {
-    for (int i = 0; i < n; ++i) v(i) = normal();
-    const Eigen::VectorXd u = design_u + v;
-    if (G.value(u) < 0) {
-      ++failures;
-      // phi(u) / phi(u - u*) = exp(-u*.v - ||u*||^2 / 2)
-      const double w = std::exp(-design_u.dot(v) - half_beta2);
-      sum += w;
-      sum_sq += w * w;
-    }
-  }
-  SamplingResult r = finish(options.samples, failures, sum, sum_sq);
-  r.evaluations = G.evaluations();
-  return r;
+  // phi(u) / phi(u - u*) at u = u* + v: exp(-u*.v - ||u*||^2 / 2)
+  return sample(g, transform, design_u, options, [&](const Eigen::VectorXd& v) {
+    return std::exp(-design_u.dot(v) - half_beta2);
+  });
 }
 
 }  // namespace pfem::reliability

@@ -7,6 +7,7 @@ struct SimulationStats {
   long long gradient_evaluations = 0;  // of which with gradients
   long long simulations = 0;           // PFEM runs done for them (FDM: 2P + 1 per gradient)
   long long cached = 0;                // --server: answers from the server's cache (no run)
+  long long retries = 0;               // --server: Evaluate calls repeated after UNAVAILABLE
   double seconds = 0.0;                // wall time spent in the evaluations
 };
 

@@ -5,6 +5,8 @@
 #include <complex>
 #include <limits>
 
+#include "clients/reliability/parallel.h"
+
 namespace pfem::reliability {
 
 namespace {
@@ -57,6 +59,7 @@ double generalized_beta(double pf) {
 std::vector<FieldError> SormOptions::validate() const {
   std::vector<FieldError> errors;
   if (!(step > 0 && step < 1)) errors.push_back({"step", "must be in (0, 1)"});
+  if (concurrency < 1) errors.push_back({"concurrency", "must be >= 1"});
   return errors;
 }
 
@@ -83,18 +86,23 @@ SormResult run_sorm(const LimitState& g, const NatafTransform& transform, const 
   const Eigen::MatrixXd basis = qr.householderQ() * Eigen::MatrixXd::Identity(n, n);
   const Eigen::MatrixXd tangent = basis.rightCols(n - 1);
 
-  StandardSpaceFunction G(g, transform);
+  // The 2 (n - 1) gradients at u* +- step p_j are independent: `concurrency` at once.
+  std::vector<Eigen::VectorXd> gradients(2 * static_cast<std::size_t>(n - 1));
+  std::vector<int> evaluations(gradients.size());
+  parallel_for(gradients.size(), options.concurrency, [&](std::size_t i) {
+    const double sign = i % 2 == 0 ? 1.0 : -1.0;
+    StandardSpaceFunction G(g, transform);
+    G.value_and_gradient(form.u + sign * options.step * tangent.col(static_cast<int>(i / 2)),
+                         gradients[i]);
+    evaluations[i] = G.evaluations();
+  });
   Eigen::MatrixXd hp(n, n - 1);  // H p_j
   for (int j = 0; j < n - 1; ++j) {
-    Eigen::VectorXd gp;
-    Eigen::VectorXd gm;
-    G.value_and_gradient(form.u + options.step * tangent.col(j), gp);
-    G.value_and_gradient(form.u - options.step * tangent.col(j), gm);
-    hp.col(j) = (gp - gm) / (2.0 * options.step);
+    hp.col(j) = (gradients[2 * j] - gradients[2 * j + 1]) / (2.0 * options.step);
   }
   Eigen::MatrixXd a = tangent.transpose() * hp / gn;
   a = 0.5 * (a + a.transpose()).eval();
-  r.evaluations = G.evaluations();
+  for (int e : evaluations) r.evaluations += e;
   if (!a.allFinite()) {
     r.message = "the Hessian of G is not finite at the design point";
     return r;

@@ -2,7 +2,7 @@
 // SORM at the FORM design point: the principal curvatures kappa_i of the limit-state surface
 // in standard normal space (the Hessian of G projected on the tangent plane and divided by
 // ||grad G||, built from central finite differences of exact gradients along an orthonormal
-// basis of the tangent plane), then
+// basis of the tangent plane; the 2 (n - 1) gradients are evaluated `concurrency` at a time), then
 //   Breitung (1984):               pf = Phi(-beta) prod (1 + beta kappa_i)^-1/2
 //   Hohenbichler & Rackwitz (1988): pf = Phi(-beta) prod (1 + psi kappa_i)^-1/2,
 //                                   psi = phi(beta) / Phi(-beta)
@@ -22,6 +22,7 @@ namespace pfem::reliability {
 
 struct SormOptions {
   double step = 1e-4;  // u-space step of the central differences of the gradient
+  int concurrency = 1; // gradients evaluated at once
   std::vector<FieldError> validate() const;
 };
 

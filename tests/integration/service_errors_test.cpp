@@ -201,35 +201,6 @@ TEST_F(ServiceErrors, LimitsAreResourceExhaustedNamingTheLimit) {
   EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
 }
 
-// Health of one service ("" = the server).
-grpc::Status health_check(const std::string& address, const std::string& service, int* serving_status) {
-  auto channel = grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
-  grpc::GenericStub stub(channel);
-  grpc::CompletionQueue cq;
-  grpc::ClientContext context;
-  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
-  std::string encoded;  // HealthCheckRequest{service}: field 1, length-delimited
-  if (!service.empty()) encoded = std::string{0x0a, static_cast<char>(service.size())} + service;
-  grpc::Slice slice(encoded);
-  grpc::ByteBuffer request(&slice, 1);
-  grpc::ByteBuffer response;
-  auto call = stub.PrepareUnaryCall(&context, "/grpc.health.v1.Health/Check", request, &cq);
-  call->StartCall();
-  grpc::Status status;
-  call->Finish(&response, &status, reinterpret_cast<void*>(1));
-  void* tag = nullptr;
-  bool ok = false;
-  cq.Next(&tag, &ok);
-  std::vector<grpc::Slice> slices;
-  std::string bytes;
-  if (status.ok() && response.Dump(&slices).ok()) {
-    for (const auto& s : slices) bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
-  }
-  // HealthCheckResponse{status = 1 (SERVING)} is the two bytes 08 01.
-  *serving_status = bytes.size() == 2 && bytes[0] == 0x08 ? bytes[1] : -1;
-  return status;
-}
-
 // The names of the services listed by server reflection (grpc.reflection.v1alpha), read from
 // the raw response bytes.
 std::string reflection_list(const std::string& address) {

@@ -1,6 +1,7 @@
 #pragma once
 // Shared pieces of the service tests: a tiny model, temporary data dirs, an in-process server
-// on 127.0.0.1 with an ephemeral port, stubs, and fake engines for the job-mechanics tests.
+// on 127.0.0.1 with an ephemeral port, stubs, a raw health check, and fake engines for the job-mechanics tests.
+#include <grpcpp/generic/generic_stub.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -88,6 +89,35 @@ inline std::unique_ptr<pfem::v1::GradientService::Stub> make_stub(const std::str
   pfem::client::ConnectionOptions o;
   o.server = address;
   return pfem::v1::GradientService::NewStub(pfem::client::make_channel(o));
+}
+
+// Health of one service ("" = the server).
+inline grpc::Status health_check(const std::string& address, const std::string& service, int* serving_status) {
+  auto channel = grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
+  grpc::GenericStub stub(channel);
+  grpc::CompletionQueue cq;
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  std::string encoded;  // HealthCheckRequest{service}: field 1, length-delimited
+  if (!service.empty()) encoded = std::string{0x0a, static_cast<char>(service.size())} + service;
+  grpc::Slice slice(encoded);
+  grpc::ByteBuffer request(&slice, 1);
+  grpc::ByteBuffer response;
+  auto call = stub.PrepareUnaryCall(&context, "/grpc.health.v1.Health/Check", request, &cq);
+  call->StartCall();
+  grpc::Status status;
+  call->Finish(&response, &status, reinterpret_cast<void*>(1));
+  void* tag = nullptr;
+  bool ok = false;
+  cq.Next(&tag, &ok);
+  std::vector<grpc::Slice> slices;
+  std::string bytes;
+  if (status.ok() && response.Dump(&slices).ok()) {
+    for (const auto& s : slices) bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
+  }
+  // HealthCheckResponse{status = 1 (SERVING)} is the two bytes 08 01.
+  *serving_status = bytes.size() == 2 && bytes[0] == 0x08 ? bytes[1] : -1;
+  return status;
 }
 
 // A fake engine: `steps` steps of `step_seconds` each, one recorder "x" = t and, with

@@ -49,6 +49,21 @@ TEST(ReliabilitySampling, SameSeedSameResultOtherSeedOtherSamples) {
   EXPECT_NE(a.failures, c.failures);
 }
 
+// Samples draw from streams keyed by their index: the same sums at every concurrency.
+TEST(ReliabilitySampling, SameResultAtEveryConcurrency) {
+  const Linear p;
+  const rel::FormResult f = rel::run_form(p.g, p.transform);
+  for (int c : {2, 3, 8}) {
+    const auto a = rel::importance_sampling(p.g, p.transform, f.u, {3000, 5, 1});
+    const auto b = rel::importance_sampling(p.g, p.transform, f.u, {3000, 5, c});
+    EXPECT_EQ(a.pf, b.pf);
+    EXPECT_EQ(a.cov, b.cov);
+    const auto m = rel::monte_carlo(p.g, p.transform, {3000, 5, 1});
+    const auto n = rel::monte_carlo(p.g, p.transform, {3000, 5, c});
+    EXPECT_EQ(m.failures, n.failures);
+  }
+}
+
 TEST(ReliabilitySampling, InvalidSampleCountIsAnError) {
   const Linear p;
   try {

@@ -1,8 +1,10 @@
 """Client, Result and Evaluation: pfem.v1.GradientService with numpy results."""
 from __future__ import annotations
 
+import concurrent.futures
 import json
 import os
+import time
 from dataclasses import dataclass, field
 from typing import Callable, Iterable, List, Mapping, Optional, Sequence, Union
 
@@ -136,16 +138,23 @@ def _param_values(values: Optional[Mapping[str, float]]):
 
 
 class Client:
-    """A connection to pfem-server. Every call raises ServiceError on a non-OK status."""
+    """A connection to pfem-server. Every call raises ServiceError on a non-OK status.
+
+    `address` is any gRPC target: HOST:PORT, dns:///NAME:PORT (every address of the name, e.g.
+    a Kubernetes headless Service) or ipv4:A:P,B:P; calls are spread over the replicas by the
+    round_robin policy. Evaluate, which gives the same answer on every replica, is retried up
+    to `max_attempts` times in all when a replica is UNAVAILABLE (it died or is draining)."""
 
     def __init__(self, address: str, *, token: Optional[str] = None,
                  token_file: Optional[str] = None, tls_ca: Optional[str] = None,
-                 max_message_mb: int = 256):
+                 max_message_mb: int = 256, max_attempts: int = 5):
         if token_file:
             with open(token_file, encoding="utf-8") as f:
                 token = next(line.strip() for line in f
                              if line.strip() and not line.strip().startswith("#"))
-        options = [("grpc.max_receive_message_length", max_message_mb * 1024 * 1024)]
+        options = [("grpc.max_receive_message_length", max_message_mb * 1024 * 1024),
+                   ("grpc.lb_policy_name", "round_robin")]
+        self._max_attempts = max_attempts
         if tls_ca:
             with open(tls_ca, "rb") as f:
                 credentials = grpc.ssl_channel_credentials(root_certificates=f.read())
@@ -164,11 +173,16 @@ class Client:
     def __exit__(self, *exc):
         self.close()
 
-    def _call(self, method, request, timeout=None):
-        try:
-            return method(request, metadata=self._metadata, timeout=timeout)
-        except grpc.RpcError as e:
-            raise ServiceError(e.code(), e.details()) from None
+    def _call(self, method, request, timeout=None, attempts=1):
+        wait = 0.1
+        for attempt in range(1, attempts + 1):
+            try:
+                return method(request, metadata=self._metadata, timeout=timeout)
+            except grpc.RpcError as e:
+                if e.code() != grpc.StatusCode.UNAVAILABLE or attempt == attempts:
+                    raise ServiceError(e.code(), e.details()) from None
+            time.sleep(wait)
+            wait = min(2 * wait, 2.0)
 
     def validate(self, model: ModelLike) -> service_pb2.ValidateModelResponse:
         return self._call(self._stub.ValidateModel,
@@ -281,7 +295,8 @@ class Client:
         for name, value in (("fdm_eps", fdm_eps), ("t_end", t_end), ("dt", dt)):
             if value is not None:
                 setattr(request, name, value)
-        response = self._call(self._stub.Evaluate, request, timeout=timeout)
+        response = self._call(self._stub.Evaluate, request, timeout=timeout,
+                              attempts=self._max_attempts)
         n = len(response.parameters)
         return Evaluation(
             names=[v.name for v in response.values],
@@ -293,6 +308,19 @@ class Client:
             parameter_values=np.array(response.parameter_values),
             cached=response.cached, wall_seconds=response.wall_seconds,
             summary=response.summary)
+
+
+    def evaluate_many(self, model: Union[ModelLike, None], functionals: Iterable,
+                      points: Sequence[Mapping[str, float]], *, concurrency: int = 1,
+                      **options) -> List[Evaluation]:
+        """evaluate() at every point (a dict of parameter values), `concurrency` calls at once
+        (spread over the replicas of the target); the results in the order of `points`."""
+        if concurrency < 1:
+            raise ValueError("concurrency: must be >= 1")
+        functionals = list(functionals)
+        with concurrent.futures.ThreadPoolExecutor(max_workers=concurrency) as pool:
+            return list(pool.map(lambda p: self.evaluate(model, functionals, param_values=p,
+                                                         **options), points))
 
 
 def summary_dict(summary: service_pb2.Summary) -> dict:

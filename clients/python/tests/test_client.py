@@ -199,6 +199,37 @@ class ClientTest(unittest.TestCase):
             self.assertEqual(fig34.main(["--result-dir", local, "--out", offline]), 0)
         for name in ("fig3_responses.png", "fig4_sensitivities.png"):
             self.assertGreater(os.path.getsize(os.path.join(offline, name)), 1000, name)
+    def test_evaluate_many_over_two_replicas_and_a_dead_one(self):
+        """An ipv4: target of this server and a second one: evaluate_many spreads the points,
+        gives the numbers one server gives, and survives the second replica's SIGKILL."""
+        second = subprocess.Popen(
+            [os.environ["PFEM_SERVER"], "--listen", "127.0.0.1:0", "--data-dir",
+             os.path.join(self.tmp, "data2"), "--workers", "1", "--token-file", self.token_file],
+            stdout=subprocess.PIPE, text=True)
+        try:
+            address = second.stdout.readline().split()[-1]
+            points = [{"rho_f": 990.0 + 2.5 * k} for k in range(8)]
+            functionals = ["bottom_p:max", "front_x:final"]
+            one = [self.client.evaluate(TINY, functionals, param_values=p, no_cache=True)
+                   for p in points]
+            with Client(f"ipv4:{self.address},{address}", token=TOKEN) as both:
+                many = both.evaluate_many(TINY, functionals, points, concurrency=2, no_cache=True)
+                for a, b in zip(one, many):
+                    np.testing.assert_array_equal(a.values, b.values)
+                    np.testing.assert_array_equal(a.gradients, b.gradients)
+                second.kill()
+                second.wait()
+                again = both.evaluate_many(TINY, functionals, points, concurrency=2, no_cache=True)
+                for a, b in zip(one, again):
+                    np.testing.assert_array_equal(a.values, b.values)
+            with self.assertRaises(ValueError):
+                self.client.evaluate_many(TINY, functionals, points, concurrency=0)
+        finally:
+            if second.poll() is None:
+                second.kill()
+                second.wait()
+            second.stdout.close()
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -1,20 +1,23 @@
-// pfem-form: FORM (and on request SORM, importance sampling, Monte Carlo) for a reliability
-// problem file (proto3 JSON of pfem.v1.ReliabilityProblem).
+// pfem-form: FORM (and on request SORM, importance sampling, Monte Carlo, subset simulation)
+// for a reliability problem file (proto3 JSON of pfem.v1.ReliabilityProblem).
 //
 //   pfem-form PROBLEM.json --out DIR [--method ihlrf|slsqp|cobyla] [--sorm]
-//             [--importance-sampling N] [--monte-carlo N] [--seed S] [--max-iterations N]
-//             [--tolerance T] [--server HOST:PORT [--token-file F]] [--gradients ddm|fdm]
-//             [--fdm-eps E] [--t-end T] [--threads N]
+//             [--importance-sampling N] [--monte-carlo N] [--subset-simulation N] [--seed S]
+//             [--max-iterations N] [--tolerance T] [--server TARGET [--token-file F]]
+//             [--concurrency N] [--gradients ddm|fdm] [--fdm-eps E] [--t-end T] [--threads N]
 //
-// Model limit states run the PFEM engine in-process, or through a pfem-server's Evaluate
-// when --server is given; gradients by DDM (default) or by central FDM (--gradients fdm,
-// 2P+1 simulations per gradient for P variables), reported with the simulation count.
+// Model limit states run the PFEM engine in-process, or through the Evaluate of pfem-server
+// replicas behind one gRPC target (round_robin) when --server is given; gradients by DDM
+// (default) or by central FDM (--gradients fdm, 2P+1 simulations per gradient for P
+// variables), reported with the simulation count. --concurrency N: how many simulations run at
+// once (samples, chains, FDM runs, SORM gradients); the results do not depend on it.
 // Writes DIR/result.json (see clients/reliability/report.h), prints a summary on stdout and
 // the iterations on stderr when stderr is a terminal.
 // Exit codes: 0 converged; 1 ran but did not converge, or the limit state failed;
 // 2 bad command line or bad problem (one line per error, naming the field).
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -39,16 +42,21 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: pfem-form PROBLEM.json --out DIR [--method ihlrf|slsqp|cobyla] [--sorm]\n"
-    "                 [--importance-sampling N] [--monte-carlo N] [--seed S]\n"
-    "                 [--max-iterations N] [--tolerance T]\n"
-    "                 [--server HOST:PORT [--token-file F]] [--gradients ddm|fdm]\n"
-    "                 [--fdm-eps E] [--t-end T] [--threads N]\n"
+    "                 [--importance-sampling N] [--monte-carlo N] [--subset-simulation N]\n"
+    "                 [--seed S] [--max-iterations N] [--tolerance T]\n"
+    "                 [--server TARGET [--token-file F]] [--concurrency N]\n"
+    "                 [--gradients ddm|fdm] [--fdm-eps E] [--t-end T] [--threads N]\n"
     "\n"
+    "  --subset-simulation N   subset simulation (Au & Beck), N samples per level, p0 = 0.1\n"
+    "  --concurrency N   evaluations of g at once: samples, chains, FDM runs, SORM gradients\n"
+    "                    (the results for a seed do not depend on it)\n"
     "Model limit states (\"limit_state\": {\"model\": ...}) run the PFEM engine in-process, or\n"
-    "through the gRPC Evaluate of a pfem-server with --server (--token-file: bearer token).\n"
+    "through the gRPC Evaluate of pfem-server with --server (--token-file: bearer token).\n"
+    "TARGET is any gRPC target: HOST:PORT, dns:///NAME:PORT or ipv4:A:P,B:P; calls are spread\n"
+    "over its addresses (round_robin) and retried on another one when a replica is UNAVAILABLE.\n"
     "  --gradients ddm   exact gradients by direct differentiation, one run each (default)\n"
-    "  --gradients fdm   central finite differences by the engine: 2P+1 runs per gradient\n"
-    "                    for P variables (relative step --fdm-eps, default 1e-7)\n"
+    "  --gradients fdm   central finite differences: 2P+1 value runs per gradient for P\n"
+    "                    variables (relative step --fdm-eps, default 1e-7), run concurrently\n"
     "  --t-end T         end time of the simulations (overrides the model's analysis.t_end)\n"
     "  --threads N       in-process: threads of the element loops\n"
     "result.json reports the runs under \"simulations\".\n";
@@ -60,6 +68,8 @@ struct Args {
   bool sorm = false;
   std::optional<std::int64_t> importance_sampling;
   std::optional<std::int64_t> monte_carlo;
+  std::optional<std::int64_t> subset_simulation;
+  std::optional<int> concurrency;
   std::optional<std::uint64_t> seed;
   std::optional<int> max_iterations;
   std::optional<double> tolerance;
@@ -83,6 +93,8 @@ Args parse_args(pfem::cli::Arguments& cli) {
   a.method = cli.take_string("--method");
   a.importance_sampling = cli.take_int64("--importance-sampling");
   a.monte_carlo = cli.take_int64("--monte-carlo");
+  a.subset_simulation = cli.take_int64("--subset-simulation");
+  a.concurrency = cli.take_int("--concurrency");
   a.seed = cli.take_uint64("--seed");
   a.max_iterations = cli.take_int("--max-iterations");
   a.tolerance = cli.take_double("--tolerance");
@@ -135,12 +147,15 @@ int main(int argc, char** argv) {
     if (args.sorm) options.sorm = true;
     if (args.importance_sampling) options.importance_sampling = *args.importance_sampling;
     if (args.monte_carlo) options.monte_carlo = *args.monte_carlo;
+    if (args.subset_simulation) options.subset_simulation = *args.subset_simulation;
+    if (args.concurrency) options.concurrency = *args.concurrency;
     if (args.seed) options.seed = *args.seed;
     if (args.max_iterations) options.form.max_iterations = *args.max_iterations;
     if (args.tolerance) options.form.tolerance = *args.tolerance;
     for (const auto& e : options.validate()) errors.push_back(e);
     rel::EvaluatorOptions evaluator;
     evaluator.server = args.server;
+    evaluator.concurrency = std::max(1, options.concurrency);
     if (args.gradients) {
       if (const auto g = rel::parse_gradient_method(*args.gradients)) {
         evaluator.gradients = *g;

@@ -29,16 +29,20 @@ namespace rel = pfem::reliability;
 namespace {
 
 constexpr const char* kUsage =
-    "usage: pfem-optimize PROBLEM.json --out DIR [--server HOST:PORT [--token-file F]]\n"
-    "                     [--gradients ddm|fdm] [--fdm-eps E] [--algorithm slsqp|mma]\n"
+    "usage: pfem-optimize PROBLEM.json --out DIR [--server TARGET [--token-file F]]\n"
+    "                     [--concurrency N] [--gradients ddm|fdm] [--fdm-eps E]\n"
+    "                     [--algorithm slsqp|mma]\n"
     "                     [--max-evaluations N] [--t-end T] [--threads N]\n"
     "\n"
     "Minimises the problem's objective over its design variables (model parameters within\n"
     "bounds) subject to its constraints; objective and constraints are functionals of model\n"
     "recorders (at_time, max, min, max_abs, final) or expressions of the design variables.\n"
-    "The model runs in-process, or through the gRPC Evaluate of a pfem-server with --server.\n"
+    "The model runs in-process, or through the gRPC Evaluate of pfem-server with --server:\n"
+    "TARGET is HOST:PORT, dns:///NAME:PORT or ipv4:A:P,B:P (calls spread round_robin over the\n"
+    "replicas, retried on another one when a replica is UNAVAILABLE).\n"
     "  --gradients ddm   exact gradients by direct differentiation, one run each (default)\n"
-    "  --gradients fdm   central finite differences by the engine, 2P+1 runs per evaluation\n"
+    "  --gradients fdm   central finite differences, 2P+1 runs per evaluation\n"
+    "  --concurrency N   FDM: how many of the 2P+1 runs go at once (default 1)\n"
     "  --algorithm, --max-evaluations override the problem file's options\n"
     "  --t-end T         end time of the simulations (overrides the model's analysis.t_end)\n"
     "Writes DIR/history.csv (every evaluation: design, objective, constraints, gradients)\n"
@@ -66,7 +70,7 @@ int main(int argc, char** argv) {
   std::string problem_file, out, server, token_file;
   std::optional<std::string> gradients, algorithm;
   std::optional<double> fdm_eps, t_end;
-  std::optional<int> max_evaluations, threads;
+  std::optional<int> max_evaluations, threads, concurrency;
   try {
     out = cli.take_string("--out").value_or("");
     server = cli.take_string("--server").value_or("");
@@ -77,6 +81,7 @@ int main(int argc, char** argv) {
     max_evaluations = cli.take_int("--max-evaluations");
     t_end = cli.take_double("--t-end");
     threads = cli.take_int("--threads");
+    concurrency = cli.take_int("--concurrency");
     cli.expect_done(1);
     problem_file = cli.positional(0);
   } catch (const std::invalid_argument& e) {
@@ -104,6 +109,10 @@ int main(int argc, char** argv) {
     if (t_end) {
       if (*t_end > 0) eo.t_end = *t_end;
       else errors.push_back({"--t-end", "must be > 0"});
+    }
+    if (concurrency) {
+      if (*concurrency >= 1) eo.concurrency = *concurrency;
+      else errors.push_back({"--concurrency", "must be >= 1"});
     }
     if (threads) {
       if (*threads >= 1) eo.threads = *threads;
