@@ -15,19 +15,21 @@
 
 namespace {
 void print_header(const char* first) {
-  std::printf("%18s %9s %9s %8s %9s %9s %7s | %8s %8s %8s %8s %8s  (ms per step)\n", first, "particles",
-              "elements", "steps/s", "newton/st", "factor/st", "halved", "remesh", "assemble", "factor", "solve",
-              "other");
+  std::printf("%18s %9s %9s %8s %9s %9s %7s %8s | %8s %8s %8s %8s %8s  (ms per step)\n", first, "particles",
+              "elements", "steps/s", "newton/st", "factor/st", "halved", "area %", "remesh", "assemble", "factor",
+              "solve", "other");
 }
 
 void print_row(const char* label, const pfem::RunSummary& s) {
   const double per = 1e3 / std::max(s.steps, 1);
   const double other = s.response_seconds - s.remesh_seconds - s.assemble_seconds - s.factorize_seconds -
                        s.solve_seconds;
-  std::printf("%18s %9d %9d %8.1f %9.1f %9.1f %7d | %8.2f %8.2f %8.2f %8.2f %8.2f%s\n", label, s.particles,
+  // area %: the fluid area's largest drift from its start, |A(t)/A(0) - 1|.
+  std::printf("%18s %9d %9d %8.1f %9.1f %9.1f %7d %8.2f | %8.2f %8.2f %8.2f %8.2f %8.2f%s\n", label, s.particles,
               s.max_elements, s.steps / s.response_seconds,
               static_cast<double>(s.newton_iterations) / std::max(s.steps, 1),
-              static_cast<double>(s.factorizations) / std::max(s.steps, 1), s.substeps, s.remesh_seconds * per,
+              static_cast<double>(s.factorizations) / std::max(s.steps, 1), s.substeps,
+              100.0 * s.fluid_area_max_drift, s.remesh_seconds * per,
               s.assemble_seconds * per, s.factorize_seconds * per, s.solve_seconds * per, other * per,
               s.status == pfem::RunStatus::kCompleted ? "" : ("  " + s.message).c_str());
 }

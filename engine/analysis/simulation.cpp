@@ -228,9 +228,11 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
       sum.fluid_area_final = fluid_area(mesh, nodes);
       sum.fluid_area_max_drift =
           std::max(sum.fluid_area_max_drift, std::abs(sum.fluid_area_final / sum.fluid_area_initial - 1.0));
-      sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind,
-                                                            problem.removal_distance * problem.h);
-      sum.inserted_particles += insert_particles(mesh, problem, nodes);
+      if (n < total_steps) {  // spacing for the next step (none after the last: the outputs are final)
+        sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind,
+                                                              problem.removal_distance * problem.h);
+        sum.inserted_particles += insert_particles(mesh, problem, nodes);
+      }
       if (options.progress) {
         Progress pr;
         pr.step = n;

@@ -105,7 +105,7 @@ class VtkOutputTest(unittest.TestCase):
         s = self.summary
         self.assertGreater(s["removed_particles"] + s["inserted_particles"], 0)
         self.assertEqual(int(np.sum(fields["kind"] == 0)),
-                         s["particles"] + s["inserted_particles"] - s["removed_particles"])
+                         s["particles"] + s["inserted_particles"] - s["removed_particles"] - s["left_domain"])
 
     def test_beam_fields_equal_the_recorders(self):
         vtk = os.path.join(self.out, "vtk")
