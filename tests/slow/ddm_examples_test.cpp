@@ -1,11 +1,14 @@
 // DDM against central finite differences on the paper's two examples as shipped (issue 4):
-//  - sloshing-beam to 0.5 s: tip_ux and base_p w.r.t. E and rho_f;
+//  - sloshing-beam to 0.45 s: tip_ux and base_p w.r.t. E and rho_f;
 //  - dam-break-obstacle to 0.34 s (impact and yielding included): tip_ux w.r.t. E and Fy.
 // The largest |DDM - FDM| over time relative to the largest |FDM| must be at most 1e-3, and the
 // DDM without H and T must fail that check. The finite-difference step is the one at which the
 // perturbed runs keep the base run's discrete path (the mesh connectivity is piecewise constant
 // in the parameters, theory §6): at 1e-7 a remeshing decision of the sloshing run differs
-// between the perturbed runs at 0.42 s, so both checks use the paper's 1e-8. The obstacle's
+// between the perturbed runs at 0.42 s, so both checks use the paper's 1e-8; at 1e-8 the
+// rho_f-perturbed sloshing runs part between 0.45 and 0.5 s since the free surface carries a
+// pressure (engine of commit 135902c; to 0.45 s the DDM is within 9.1e-7 of the FDM for the
+// tip and 5.0e-6 for the base pressure, to 0.5 s the FDM jumps), so the check stops at 0.45 s. The obstacle's
 // perturbed runs part at 0.344 s (Fy) and 0.351 s (E), at 1e-10 too, while at 1e-12 the FDM is
 // the Newton tolerance's noise: the check stops at 0.34 s.
 #include <gtest/gtest.h>
@@ -43,8 +46,8 @@ void expect_exact(const std::string& example, double t_end, double fdm_eps, cons
   EXPECT_EQ(checked, static_cast<int>(params.size() * recorders.size()));
 }
 
-TEST(DdmExamples, SloshingBeamToHalfASecond) {
-  expect_exact("sloshing-beam", 0.5, 1e-8, {"E", "rho_f"}, {"tip_ux", "base_p"});
+TEST(DdmExamples, SloshingBeamToPointFourFiveSeconds) {
+  expect_exact("sloshing-beam", 0.45, 1e-8, {"E", "rho_f"}, {"tip_ux", "base_p"});
 }
 
 TEST(DdmExamples, DamBreakObstacleToPointThreeFourSeconds) {
