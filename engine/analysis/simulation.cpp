@@ -51,14 +51,13 @@ void slide_walls(const Problem& problem, const mesh::FluidMesh& previous, NodeSt
   }
   for (const auto& slide : mesh::contact_line_slides(previous, nodes.x, nodes.y, problem.sliding_walls,
                                                       problem.wall_neighbours)) {
-    const auto it = std::find_if(problem.sliding_walls.begin(), problem.sliding_walls.end(),
-                                 [&](const mesh::SlidingWallNode& s) { return s.node == slide.node; });
-    const double tx = it->tx, ty = it->ty;
-    nodes.x[slide.node] = it->home_x + slide.offset * tx;
-    nodes.y[slide.node] = it->home_y + slide.offset * ty;
+    const mesh::SlidingWallNode& s = problem.sliding_walls[slide.index];
+    const double tx = s.tx, ty = s.ty;
+    nodes.x[s.node] = s.home_x + slide.offset * tx;
+    nodes.y[s.node] = s.home_y + slide.offset * ty;
     for (int k = 0; k < nodes.num_params; ++k) {
       const double* dp = nodes.sensitivity(slide.particle, k);
-      double* dw = nodes.sensitivity(slide.node, k);
+      double* dw = nodes.sensitivity(s.node, k);
       const double along = dp[NodeState::kDx] * tx + dp[NodeState::kDy] * ty;
       dw[NodeState::kDx] = along * tx, dw[NodeState::kDy] = along * ty;
     }

@@ -21,7 +21,7 @@ std::vector<WallSlide> contact_line_slides(const FluidMesh& previous, std::span<
     }
     if (best < 0) continue;
     taken[best] = 1;
-    slides.push_back({sliding[best].node, particle, best_offset});
+    slides.push_back({best, particle, best_offset});
   }
   return slides;
 }

@@ -27,9 +27,10 @@ struct SlidingWallNode {
   double reach = 0.0;                 // largest slide either way [m]
 };
 
-// Where a sliding node goes: node at home + offset * tangent, following particle's position.
+// Where a sliding node goes: sliding[index] at its home + offset * tangent, following the
+// particle's position.
 struct WallSlide {
-  std::int32_t node = -1;
+  int index = -1;
   std::int32_t particle = -1;
   double offset = 0.0;
 };
