@@ -25,12 +25,12 @@ Dual field(const NodeState& nodes, int i, int which, int k) {
 
 }  // namespace
 
-double wave_gauge(const mesh::FluidMesh& mesh, const NodeState& nodes, double x, int k) {
+ProbeSite wave_gauge_site(const mesh::FluidMesh& mesh, const NodeState& nodes, double x) {
   // Boundary edges: those of one kept triangle only.
   std::map<std::pair<std::int32_t, std::int32_t>, int> uses;
   for (const auto& t : mesh.triangles)
     for (int e = 0; e < 3; ++e) ++uses[std::minmax(t[e], t[(e + 1) % 3])];
-  int best_a = -1, best_b = -1;
+  ProbeSite best;
   double best_y = 0.0;
   for (const auto& [edge, count] : uses) {
     const auto [a, b] = edge;
@@ -39,35 +39,57 @@ double wave_gauge(const mesh::FluidMesh& mesh, const NodeState& nodes, double x,
     const double xa = nodes.x[a], xb = nodes.x[b];
     if (!((xa <= x && x < xb) || (xb <= x && x < xa))) continue;  // half-open: a node is crossed once
     const double y = nodes.y[a] + (x - xa) / (xb - xa) * (nodes.y[b] - nodes.y[a]);
-    if (best_a < 0 || y > best_y) best_a = a, best_b = b, best_y = y;
+    if (best.a < 0 || y > best_y) best.a = a, best.b = b, best_y = y;
   }
-  if (best_a < 0) return 0.0;
-  const Dual xa = field(nodes, best_a, NodeState::kDx, k), ya = field(nodes, best_a, NodeState::kDy, k);
-  const Dual xb = field(nodes, best_b, NodeState::kDx, k), yb = field(nodes, best_b, NodeState::kDy, k);
+  return best;
+}
+
+double wave_gauge(const ProbeSite& site, const NodeState& nodes, double x, int k) {
+  if (site.a < 0) return 0.0;
+  const Dual xa = field(nodes, site.a, NodeState::kDx, k), ya = field(nodes, site.a, NodeState::kDy, k);
+  const Dual xb = field(nodes, site.b, NodeState::kDx, k), yb = field(nodes, site.b, NodeState::kDy, k);
   const Dual y = ya + (Dual{x, 0.0} - xa) / (xb - xa) * (yb - ya);
   return k < 0 ? y.v : y.d;
 }
 
-double pressure_at(const mesh::FluidMesh& mesh, const NodeState& nodes, double x, double y, int k) {
-  for (const auto& t : mesh.triangles) {
-    std::array<Dual, 3> px, py;
-    for (int a = 0; a < 3; ++a) px[a] = field(nodes, t[a], NodeState::kDx, k), py[a] = field(nodes, t[a], NodeState::kDy, k);
-    // Barycentric coordinates: the signed areas of the sub-triangles opposite each corner.
-    const Dual X{x, 0.0}, Y{y, 0.0};
-    const auto twice_area = [](Dual ax, Dual ay, Dual bx, Dual by, Dual cx, Dual cy) {
-      return (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
-    };
-    const Dual whole = twice_area(px[0], py[0], px[1], py[1], px[2], py[2]);
-    const std::array<Dual, 3> part{twice_area(X, Y, px[1], py[1], px[2], py[2]),
-                                   twice_area(px[0], py[0], X, Y, px[2], py[2]),
-                                   twice_area(px[0], py[0], px[1], py[1], X, Y)};
-    const double tolerance = -1e-12 * whole.v;
-    if (!(whole.v > 0.0) || part[0].v < tolerance || part[1].v < tolerance || part[2].v < tolerance) continue;
-    Dual p;
-    for (int a = 0; a < 3; ++a) p = p + part[a] / whole * field(nodes, t[a], NodeState::kDp, k);
-    return k < 0 ? p.v : p.d;
+namespace {
+// Twice the signed areas of the triangle t and of its sub-triangles opposite each corner with
+// the point (x, y); parameter k's derivatives in their dual parts.
+struct Barycentric {
+  Dual whole;
+  std::array<Dual, 3> part;
+};
+Barycentric barycentric(const std::array<std::int32_t, 3>& t, const NodeState& nodes, double x, double y, int k) {
+  std::array<Dual, 3> px, py;
+  for (int a = 0; a < 3; ++a) px[a] = field(nodes, t[a], NodeState::kDx, k), py[a] = field(nodes, t[a], NodeState::kDy, k);
+  const Dual X{x, 0.0}, Y{y, 0.0};
+  const auto twice_area = [](Dual ax, Dual ay, Dual bx, Dual by, Dual cx, Dual cy) {
+    return (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
+  };
+  return {twice_area(px[0], py[0], px[1], py[1], px[2], py[2]),
+          {twice_area(X, Y, px[1], py[1], px[2], py[2]), twice_area(px[0], py[0], X, Y, px[2], py[2]),
+           twice_area(px[0], py[0], px[1], py[1], X, Y)}};
+}
+}  // namespace
+
+ProbeSite pressure_site(const mesh::FluidMesh& mesh, const NodeState& nodes, double x, double y) {
+  for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
+    const Barycentric b = barycentric(mesh.triangles[e], nodes, x, y, -1);
+    const double tolerance = -1e-12 * b.whole.v;
+    if (b.whole.v > 0.0 && b.part[0].v >= tolerance && b.part[1].v >= tolerance && b.part[2].v >= tolerance)
+      return {-1, -1, static_cast<int>(e)};
   }
-  return 0.0;
+  return {};
+}
+
+double pressure_at(const ProbeSite& site, const mesh::FluidMesh& mesh, const NodeState& nodes, double x, double y,
+                   int k) {
+  if (site.triangle < 0) return 0.0;
+  const auto& t = mesh.triangles[site.triangle];
+  const Barycentric b = barycentric(t, nodes, x, y, k);
+  Dual p;
+  for (int a = 0; a < 3; ++a) p = p + b.part[a] / b.whole * field(nodes, t[a], NodeState::kDp, k);
+  return k < 0 ? p.v : p.d;
 }
 
 }  // namespace pfem

@@ -75,8 +75,8 @@ std::vector<double> sample_recorders(const Problem& problem, const NodeState& no
     else if (r.quantity == "rz") value = nodes.rz[i];
     else if (r.element >= 0 && structure) value = element_value(r, *structure);
     else if (r.quantity == "fluid_area") value = fluid_area(mesh, nodes);
-    else if (r.quantity == "wave_gauge") value = wave_gauge(mesh, nodes, r.x);
-    else if (r.quantity == "pressure") value = pressure_at(mesh, nodes, r.x, r.y);
+    else if (r.quantity == "wave_gauge") value = wave_gauge(wave_gauge_site(mesh, nodes, r.x), nodes, r.x);
+    else if (r.quantity == "pressure") value = pressure_at(pressure_site(mesh, nodes, r.x, r.y), mesh, nodes, r.x, r.y);
     else if (r.quantity == "front_x" || r.quantity == "front_y") {
       const bool use_x = r.quantity == "front_x";
       const int front = fluid_extreme(nodes, mesh, use_x);
@@ -107,6 +107,9 @@ std::vector<double> sample_recorder_sensitivities(const Problem& problem, const 
     else if (r.quantity == "front_x") node = fluid_extreme(nodes, mesh, true), field = NodeState::kDx;
     else if (r.quantity == "front_y") node = fluid_extreme(nodes, mesh, false), field = NodeState::kDy;
     const int fast = r.quantity == "max_speed" ? fastest(nodes) : -1;
+    const ProbeSite site = r.quantity == "wave_gauge" ? wave_gauge_site(mesh, nodes, r.x)
+                           : r.quantity == "pressure" ? pressure_site(mesh, nodes, r.x, r.y)
+                                                      : ProbeSite{};
     for (int k = 0; k < np; ++k) {
       double value = 0.0;
       if (field >= 0 && node >= 0) {
@@ -125,9 +128,9 @@ std::vector<double> sample_recorder_sensitivities(const Problem& problem, const 
           }
         }
       } else if (r.quantity == "wave_gauge") {
-        value = wave_gauge(mesh, nodes, r.x, k);
+        value = wave_gauge(site, nodes, r.x, k);
       } else if (r.quantity == "pressure") {
-        value = pressure_at(mesh, nodes, r.x, r.y, k);
+        value = pressure_at(site, mesh, nodes, r.x, r.y, k);
       } else if (fast >= 0) {
         const double* d = nodes.sensitivity(fast, k);
         value = (nodes.vx[fast] * d[NodeState::kDvx] + nodes.vy[fast] * d[NodeState::kDvy]) /
