@@ -2,10 +2,10 @@
 
 #include <google/protobuf/util/message_differencer.h>
 
+#include <charconv>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 
 namespace pfem {
 
@@ -40,13 +40,12 @@ void archive(StateArchive& a, Checkpoint& c, std::string& engine) {
   a(c.step), a(c.time), a(c.state);
 }
 
+// The shortest text that reads back as the value.
 template <class T>
 std::string shown(const std::optional<T>& v) {
   if (!v) return "not set";
-  std::ostringstream o;
-  o.precision(17);
-  o << *v;
-  return o.str();
+  char buf[32];
+  return std::string(buf, std::to_chars(buf, buf + sizeof buf, *v).ptr);
 }
 
 std::string joined(const std::vector<std::string>& v) {
@@ -88,23 +87,24 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   if (bytes.rfind(kFirstLine, 0) != 0)
     throw CheckpointError(where + "is of another checkpoint format (" + bytes.substr(0, bytes.find('\n')) +
                           "; this engine reads format " + std::to_string(kFormat) + ")");
-  std::uint64_t sum = 0;
-  if (bytes.size() < kFirstLine.size() + sizeof sum) throw CheckpointError(where + "is truncated");
-  std::memcpy(&sum, bytes.data() + bytes.size() - sizeof sum, sizeof sum);
-  bytes.resize(bytes.size() - sizeof sum);
-  if (fnv1a(bytes) != sum) throw CheckpointError(where + "is truncated or corrupted (its checksum does not match)");
-  StateArchive a = StateArchive::restoring(bytes.substr(kFirstLine.size()));
   Checkpoint c;
   std::string engine;
   try {
-    a(engine);
+    // The build first: another build's file may differ in anything after its name.
+    StateArchive head = StateArchive::restoring(bytes.substr(kFirstLine.size(), 128));
+    head(engine);
     if (engine != kEngineBuild)
       throw CheckpointError("was written by another engine build (" + engine.substr(0, 12) + ", this one is " +
                             std::string(kEngineBuild).substr(0, 12) +
                             "): a restart continues bit-identically only on the build that wrote it");
-    StateArchive whole = StateArchive::restoring(bytes.substr(kFirstLine.size()));
-    archive(whole, c, engine);
-    if (!whole.at_end()) throw CheckpointError("has bytes after its state");
+    std::uint64_t sum = 0;
+    if (bytes.size() < kFirstLine.size() + sizeof sum) throw CheckpointError("is truncated");
+    std::memcpy(&sum, bytes.data() + bytes.size() - sizeof sum, sizeof sum);
+    bytes.resize(bytes.size() - sizeof sum);
+    if (fnv1a(bytes) != sum) throw CheckpointError("is truncated or corrupted (its checksum does not match)");
+    StateArchive a = StateArchive::restoring(bytes.substr(kFirstLine.size()));
+    archive(a, c, engine);
+    if (!a.at_end()) throw CheckpointError("has bytes after its state");
   } catch (const CheckpointError& e) {
     throw CheckpointError(where + e.what());
   }
