@@ -5,6 +5,7 @@
 
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
+#include "engine/io/model_warnings.h"
 #include "server/hashing.h"
 #include "server/model_cost.h"
 #include "server/requests.h"
@@ -83,8 +84,19 @@ grpc::Status GradientService::ValidateModel(grpc::ServerContext* context,
       fe->set_message(e.message);
     }
     response->set_valid(response->errors().empty());
-    response->set_estimated_particles(estimate_particles(request->model()));
-    response->set_steps(count_steps(request->model(), std::nullopt, std::nullopt));
+    if (response->valid()) {
+      for (const auto& w : model_warnings(request->model())) {
+        auto* fw = response->add_warnings();
+        fw->set_path(w.path);
+        fw->set_message(w.message);
+      }
+    }
+    const RunEstimate estimate = estimate_run(request->model());
+    response->set_estimated_particles(estimate.particles);
+    response->set_steps(estimate.steps);
+    response->set_estimated_elements(estimate.elements);
+    response->set_estimated_seconds(estimate.seconds);
+    response->set_seconds_per_particle_step(estimate.seconds_per_particle_step);
     try {
       check_run_limits(request->model(), std::nullopt, std::nullopt, limits_);
     } catch (const ServiceError& e) {
