@@ -87,7 +87,7 @@ UmbridgeConfig read_config(const json& config, const pfem::v1::Model& model) {
       const std::string path = "config.params[" + std::to_string(i) + "]";
       const auto& name = (*it)[i];
       const auto p = std::find_if(model.parameters().begin(), model.parameters().end(),
-                                  [&](const auto& p) { return name.is_string() && p.name() == name; });
+                                  [&](const auto& q) { return name.is_string() && q.name() == name; });
       if (p == model.parameters().end()) {
         errors.push_back({path, "no parameter " + name.dump() + " in the model"});
       } else if (p->direction_size() > 0) {
