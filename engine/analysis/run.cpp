@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <set>
 
@@ -48,6 +48,7 @@ const char* method_name(SensitivityMethod m) {
   return m == SensitivityMethod::kDdm ? "ddm" : m == SensitivityMethod::kFdm ? "fdm" : "none";
 }
 
+// The parameter called name (checked to exist: an option or a validated direction names it).
 const ParameterSpec& spec_of(const Problem& pb, const std::string& name) {
   return *std::find_if(pb.parameters.begin(), pb.parameters.end(), [&](const auto& p) { return p.name == name; });
 }

@@ -189,7 +189,8 @@ TEST(DdmGradient, SlipWallTankWithAWaveGaugeAndAPressurePoint) {
 // weighted sum of theirs from a P-parameter run to 1e-11 of the terms' size (the largest over
 // time of sum_k |w_k d/dtheta_k|: the terms may cancel; measured 1e-13 to 3e-12, the step's
 // sensitivity GMRES stops at a residual of 1e-13), with the same responses bit for bit;
-// and it matches the engine's central differences along it (two runs at v_k +- w_k s).
+// and it matches the engine's central differences along it (two runs at v_k +- w_k s) within
+// 1e-4 of their largest.
 void check_direction(pfem::v1::Model model, double t_end,
                      const std::vector<std::pair<std::string, double>>& weights,
                      const std::vector<std::string>& recorders) {
@@ -246,7 +247,7 @@ void check_direction(pfem::v1::Model model, double t_end,
   for (const auto& r : c.rows) {
     if (std::find(recorders.begin(), recorders.end(), r.recorder) == recorders.end()) continue;
     EXPECT_GT(r.max_fdm, 0.0) << r.recorder;
-    EXPECT_LE(r.ddm, 1e-3) << r.recorder;
+    EXPECT_LE(r.ddm, 1e-4) << r.recorder;
   }
 }
 
