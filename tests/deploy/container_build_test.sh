@@ -21,6 +21,9 @@ podman build --isolation chroot --build-arg BASE="$base" -f deploy/container/Con
 ctr="$(buildah from "$image")"
 trap 'buildah rm "$ctr" >/dev/null' EXIT
 buildah copy "$ctr" examples/hydrostatic.json /tmp/model.json >/dev/null
+# Every binary finds every shared library it links (the runtime stage lists them by hand).
+missing="$(buildah run --isolation chroot "$ctr" -- /bin/sh -c 'ldd /usr/local/bin/*' | grep 'not found' || true)"
+[ -z "$missing" ] || { echo "missing in the image: $missing" >&2; exit 1; }
 help="$(buildah run --isolation chroot "$ctr" -- /usr/local/bin/pfem-server --help)"
 grep -q -- "--health-listen HOST:PORT" <<<"$help"
 buildah run --isolation chroot "$ctr" -- /usr/local/bin/pfem validate /tmp/model.json
