@@ -2,6 +2,7 @@
 
 #include <httplib.h>
 
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
@@ -138,7 +139,14 @@ UmbridgeServer::UmbridgeServer(const std::string& listen, const Evaluator& evalu
   port_ =
       port == 0 ? http_->bind_to_any_port(host_) : (http_->bind_to_port(host_, port) ? port : -1);
   if (port_ <= 0) throw std::runtime_error("--umbridge-listen: cannot listen on " + listen);
-  thread_ = std::thread([this] { http_->listen_after_bind(); });
+  thread_ = std::thread([this] {
+    http_->listen_after_bind();
+    listen_ended_ = true;
+  });
+  // httplib's stop() does nothing before the listen loop has begun, and the loop then waits in
+  // accept() for ever: a server stopped right after it started hung its destructor (seen under
+  // load in umbridge_test). Return once the loop runs (or has already ended, on an error).
+  while (!http_->is_running() && !listen_ended_) std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 
 UmbridgeServer::~UmbridgeServer() { stop(); }

@@ -71,6 +71,7 @@ class UmbridgeServer {
   std::atomic<bool> draining_{false};
   std::atomic<bool> cancelled_{false};
   std::atomic<int> in_flight_{0};
+  std::atomic<bool> listen_ended_{false};  // listen_after_bind() has returned
 };
 
 }  // namespace pfem::server

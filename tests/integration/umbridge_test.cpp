@@ -461,6 +461,24 @@ TEST_F(UmbridgeServerTest, ACallStillRunningAtTheEndOfTheGraceIsCancelled) {
   EXPECT_EQ(log->ended, static_cast<int>(pfem::RunStatus::kCancelled));
 }
 
+TEST(UmbridgeServer, AServerStoppedRightAfterItStartsStops) {
+  // httplib's stop() before its listen loop had begun left the loop in accept() and the
+  // destructor waiting for ever (seen once in ctest under load); here nothing runs between.
+  TempDir dir{"umbridge-stop"};
+  pfem::server::Store store(dir.path / "data");
+  pfem::server::JobManager jobs(store, {});
+  pfem::server::ResultCache cache(1);
+  const pfem::server::Limits limits;
+  const pfem::server::Evaluator evaluator(store, jobs, cache, limits);
+  const pfem::server::UmbridgeModels models({}, store);
+  const pfem::server::TokenAuth auth;
+  for (int i = 0; i < 2000; ++i) {
+    pfem::server::UmbridgeServer u("127.0.0.1:0", evaluator, models, auth, 1, 1 << 20);
+  }
+  pfem::server::UmbridgeServer u("127.0.0.1:0", evaluator, models, auth, 1, 1 << 20);
+  EXPECT_EQ(Client(u.address()).get("/Info").status, 200);
+}
+
 TEST_F(UmbridgeServerTest, ConfigShortensTheRun) {
   const json request = {{"name", "tiny"},
                         {"input", {{1000.0, 2.15e9}}},
