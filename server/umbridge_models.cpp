@@ -86,11 +86,12 @@ UmbridgeConfig read_config(const json& config, const pfem::v1::Model& model) {
     for (std::size_t i = 0; it->is_array() && i < it->size(); ++i) {
       const std::string path = "config.params[" + std::to_string(i) + "]";
       const auto& name = (*it)[i];
-      const bool known =
-          name.is_string() && std::any_of(model.parameters().begin(), model.parameters().end(),
-                                          [&](const auto& p) { return p.name() == name; });
-      if (!known) {
+      const auto p = std::find_if(model.parameters().begin(), model.parameters().end(),
+                                  [&](const auto& q) { return name.is_string() && q.name() == name; });
+      if (p == model.parameters().end()) {
         errors.push_back({path, "no parameter " + name.dump() + " in the model"});
+      } else if (p->direction_size() > 0) {
+        errors.push_back({path, name.dump() + " is a directional parameter: it has no value to input"});
       } else if (std::find(out.params.begin(), out.params.end(), name) != out.params.end()) {
         errors.push_back({path, "repeats " + name.dump()});
       } else {
@@ -98,7 +99,9 @@ UmbridgeConfig read_config(const json& config, const pfem::v1::Model& model) {
       }
     }
   } else {
-    for (const auto& p : model.parameters()) out.params.push_back(p.name());
+    for (const auto& p : model.parameters()) {
+      if (p.direction_size() == 0) out.params.push_back(p.name());
+    }
   }
   if (const auto it = config.find("outputs"); it != config.end()) {
     if (!it->is_array() || it->empty()) {
@@ -172,6 +175,29 @@ pfem::v1::EvaluateRequest evaluate_request(const pfem::v1::Model& model,
   } else {
     request.set_sensitivity(pfem::v1::SENSITIVITY_METHOD_NONE);
   }
+  return request;
+}
+
+pfem::v1::EvaluateRequest directional_request(const pfem::v1::Model& model,
+                                              const UmbridgeConfig& config,
+                                              std::span<const double> input,
+                                              std::span<const double> vec) {
+  auto request = evaluate_request(model, config, input, true);
+  auto& parameters = *request.mutable_model()->mutable_parameters();
+  std::string name = "vec";  // a name no parameter of the model has
+  while (std::any_of(parameters.begin(), parameters.end(),
+                     [&](const auto& p) { return p.name() == name; })) {
+    name += '_';
+  }
+  auto* direction = parameters.Add();
+  direction->set_name(name);
+  for (std::size_t k = 0; k < vec.size(); ++k) {
+    auto* w = direction->add_direction();
+    w->set_parameter(config.params.at(k));
+    w->set_weight(vec[k]);
+  }
+  request.clear_params();
+  request.add_params(name);
   return request;
 }
 

@@ -5,7 +5,8 @@
 //
 // config (every key optional; any other key is an InvalidInput error):
 //   "params":  ["rho_f", ...]  the input vector's entries, in this order; default: every
-//                              parameter of the model, in model order
+//                              parameter of the model with targets (not the directional
+//                              ones), in model order
 //   "outputs": ["tip_ux:max", "p:value_at:0.25", ...]  the output vector's entries,
 //              "<recorder>:<kind>[:<time>]" with kind max, min, max_abs, final or value_at
 //              (then a time [s]); default: "<recorder>:final" for every recorder, in order
@@ -44,6 +45,15 @@ UmbridgeConfig read_config(const nlohmann::json& config, const pfem::v1::Model& 
 pfem::v1::EvaluateRequest evaluate_request(const pfem::v1::Model& model,
                                            const UmbridgeConfig& config,
                                            std::span<const double> input, bool with_gradient);
+
+// The ApplyJacobian call (vec.size() == config.params.size()): evaluate_request's with a
+// directional parameter added to the model (model.proto, Parameter.direction) that weighs
+// config.params by vec, and differentiated alone: its gradient is J vec from one sensitivity
+// solve per step, whatever the number of inputs.
+pfem::v1::EvaluateRequest directional_request(const pfem::v1::Model& model,
+                                              const UmbridgeConfig& config,
+                                              std::span<const double> input,
+                                              std::span<const double> vec);
 
 class UmbridgeModels {
  public:

@@ -2,6 +2,7 @@
 
 #include <httplib.h>
 
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
@@ -138,7 +139,14 @@ UmbridgeServer::UmbridgeServer(const std::string& listen, const Evaluator& evalu
   port_ =
       port == 0 ? http_->bind_to_any_port(host_) : (http_->bind_to_port(host_, port) ? port : -1);
   if (port_ <= 0) throw std::runtime_error("--umbridge-listen: cannot listen on " + listen);
-  thread_ = std::thread([this] { http_->listen_after_bind(); });
+  thread_ = std::thread([this] {
+    http_->listen_after_bind();
+    listen_ended_ = true;
+  });
+  // httplib's stop() does nothing before the listen loop has begun, and the loop then waits in
+  // accept() for ever: a server stopped right after it started hung its destructor (seen under
+  // load in umbridge_test). Return once the loop runs (or has already ended, on an error).
+  while (!http_->is_running() && !listen_ended_) std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 
 UmbridgeServer::~UmbridgeServer() { stop(); }
@@ -257,11 +265,10 @@ void UmbridgeServer::add_routes() {
     for (const auto& v : response.values()) output.push_back(v.value());
     return json{{"output", json::array({json(output)})}};
   });
-  // Gradient and ApplyJacobian: J at the input and the request's vector `key` (sens, of the
+  // Gradient and ApplyJacobian: the call and the request's vector `key` (sens, of the
   // output's size, or vec, of the input's).
-  const auto derivative_call = [resolve, jacobian](const json& body, const char* key,
-                                                   const Evaluator::StopFunction& should_stop) {
-    const Call call = resolve(body, true);
+  const auto derivative_call = [resolve](const json& body, const char* key) {
+    Call call = resolve(body, true);
     if (call.config.params.empty()) {
       throw invalid("input[0]: empty, so there is nothing to differentiate (config.params)");
     }
@@ -271,22 +278,25 @@ void UmbridgeServer::add_routes() {
     check_vector(
         v, std::string(key) == "sens" ? call.config.outputs.size() : call.config.params.size(),
         key);
-    return std::pair{jacobian(call, should_stop), v};
+    return std::pair{std::move(call), v};
   };
-  route(true, "/Gradient", [derivative_call](const json& body, const auto& should_stop) {
-    const auto [j, sens] = derivative_call(body, "sens", should_stop);
-    std::vector<double> g(j.empty() ? 0 : j[0].size(), 0.0);
+  route(true, "/Gradient", [derivative_call, jacobian](const json& body, const auto& should_stop) {
+    const auto [call, sens] = derivative_call(body, "sens");
+    const auto j = jacobian(call, should_stop);
+    std::vector<double> g(call.config.params.size(), 0.0);
     for (std::size_t i = 0; i < j.size(); ++i) {
       for (std::size_t k = 0; k < g.size(); ++k) g[k] += sens[i] * j[i][k];
     }
     return json{{"output", g}};
   });
-  route(true, "/ApplyJacobian", [derivative_call](const json& body, const auto& should_stop) {
-    const auto [j, vec] = derivative_call(body, "vec", should_stop);
-    std::vector<double> jv(j.size(), 0.0);
-    for (std::size_t i = 0; i < j.size(); ++i) {
-      for (std::size_t k = 0; k < vec.size(); ++k) jv[i] += j[i][k] * vec[k];
-    }
+  // J vec: the derivative along vec, one directional parameter (umbridge_models.h).
+  route(true, "/ApplyJacobian", [this, derivative_call](const json& body, const auto& should_stop) {
+    const auto [call, vec] = derivative_call(body, "vec");
+    pfem::v1::EvaluateResponse response;
+    evaluator_.evaluate(directional_request(call.model, call.config, call.input, vec),
+                        should_stop, &response);
+    std::vector<double> jv;
+    for (const auto& v : response.values()) jv.push_back(v.gradient(0));
     return json{{"output", jv}};
   });
   route(true, "/ApplyHessian", [resolve](const json& body, const auto&) -> json {

@@ -7,7 +7,7 @@
 //   POST /InputSizes, /OutputSizes {"inputSizes": [P]}, {"outputSizes": [N]} (config honoured)
 //   POST /Evaluate                 {"output": [[f_1 .. f_N]]}
 //   POST /Gradient                 {"output": sens^T J}       (J from one DDM run, cached)
-//   POST /ApplyJacobian            {"output": J vec}
+//   POST /ApplyJacobian            {"output": J vec}           (one directional DDM run, cached)
 //   POST /ApplyHessian             400 UnsupportedFeature
 // Inputs, outputs and config: server/umbridge_models.h. Every call goes through the same
 // Evaluator and cache as the gRPC Evaluate (server/evaluator.h), so its numbers are the gRPC
@@ -71,6 +71,7 @@ class UmbridgeServer {
   std::atomic<bool> draining_{false};
   std::atomic<bool> cancelled_{false};
   std::atomic<int> in_flight_{0};
+  std::atomic<bool> listen_ended_{false};  // listen_after_bind() has returned
 };
 
 }  // namespace pfem::server

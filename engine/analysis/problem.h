@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/fluid/mini_element.h"
@@ -33,8 +34,10 @@ struct RecorderSpec {
 
 struct ParameterSpec {
   std::string name;
-  std::vector<std::string> targets;
-  double value = 0.0;
+  std::vector<std::string> targets;  // empty for a directional parameter
+  double value = 0.0;                // 0 for a directional parameter (its offset s)
+  // A directional parameter (model.proto, Parameter.direction): the parameters it weighs.
+  std::vector<std::pair<std::string, double>> direction;
 };
 
 struct Problem {

@@ -1,7 +1,9 @@
 #include "engine/analysis/run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <set>
 
@@ -48,30 +50,51 @@ void check_options(const RunOptions& o, const Problem& pb, std::vector<const Par
   if (!errors.empty()) throw ModelError(std::move(errors));
 }
 
-// The problem of the model with one parameter set to value: rebuilt from the model, so that
-// every kind of target (fluid, thickness, materials, sections, beams) takes the value.
-Problem problem_with(const pfem::v1::Model& model, const Problem& base, const std::string& name, double value) {
+// The parameter called name (checked to exist: an option or a validated direction names it).
+const ParameterSpec& spec_of(const Problem& pb, const std::string& name) {
+  return *std::find_if(pb.parameters.begin(), pb.parameters.end(), [&](const auto& p) { return p.name == name; });
+}
+
+// The FDM step of a parameter: eps |value| (eps when the value is 0); of a directional one, the
+// largest s that moves none of its parameters by more than their own step (eps at weights 0).
+double fdm_step(const Problem& pb, const ParameterSpec& p, double eps) {
+  const auto own = [eps](double value) { return eps * (value != 0.0 ? std::abs(value) : 1.0); };
+  if (p.direction.empty()) return own(p.value);
+  double step = std::numeric_limits<double>::infinity();
+  for (const auto& [name, weight] : p.direction)
+    if (weight != 0.0) step = std::min(step, own(spec_of(pb, name).value) / std::abs(weight));
+  return std::isfinite(step) ? step : eps;
+}
+
+// The problem of the model with parameter p moved by s (a directional one moves each of its
+// parameters k to v_k + w_k s): rebuilt from the model, so that every kind of target (fluid,
+// thickness, materials, sections, beams) takes the value.
+Problem problem_with(const pfem::v1::Model& model, const Problem& base, const ParameterSpec& p, double s) {
+  std::vector<std::pair<std::string, double>> values;
+  if (p.direction.empty()) values.emplace_back(p.name, p.value + s);
+  for (const auto& [name, weight] : p.direction) values.emplace_back(name, spec_of(base, name).value + weight * s);
   pfem::v1::Model changed = model;
-  for (auto& p : *changed.mutable_parameters())
-    if (p.name() == name) p.set_value(value);
+  for (auto& q : *changed.mutable_parameters())
+    for (const auto& [name, value] : values)
+      if (q.name() == name) q.set_value(value);
   Problem pb = build_problem(changed);
   pb.t_end = base.t_end, pb.dt = base.dt;  // the run's overrides
   return pb;
 }
 
-// A problem_with for value, or nullopt when the model rejects that value (a parameter at a
-// bound of its range, as a viscosity of 0).
-std::optional<Problem> problem_if_valid(const pfem::v1::Model& model, const Problem& base, const std::string& name,
-                                        double value) {
+// A problem_with for s, or nullopt when the model rejects the values (a parameter at a bound of
+// its range, as a viscosity of 0).
+std::optional<Problem> problem_if_valid(const pfem::v1::Model& model, const Problem& base, const ParameterSpec& p,
+                                        double s) {
   try {
-    return problem_with(model, base, name, value);
+    return problem_with(model, base, p, s);
   } catch (const ModelError&) {
     return std::nullopt;
   }
 }
 
-// Central differences: 2 runs per parameter, step eps*|value| (eps when the value is 0); a
-// one-sided difference against the unperturbed run where one side leaves the parameter's range.
+// Central differences: 2 runs per parameter, step fdm_step(); a one-sided difference against
+// the unperturbed run where one side leaves the parameter's range.
 void finite_differences(const pfem::v1::Model& model, const Problem& base, const RunOptions& o,
                         const std::vector<const ParameterSpec*>& params, RunResult& result) {
   const auto start = std::chrono::steady_clock::now();
@@ -85,10 +108,10 @@ void finite_differences(const pfem::v1::Model& model, const Problem& base, const
   const std::size_t nrec = result.responses.columns.size();
   std::vector<std::vector<std::vector<double>>> per_param;  // [param][row][recorder]
   for (const auto* p : params) {
-    const double step = o.fdm_eps * (p->value != 0.0 ? std::abs(p->value) : 1.0);
-    const auto plus = problem_if_valid(model, base, p->name, p->value + step);
-    const auto minus = problem_if_valid(model, base, p->name, p->value - step);
-    if (!plus && !minus) problem_with(model, base, p->name, p->value + step);  // throws: why
+    const double step = fdm_step(base, *p, o.fdm_eps);
+    const auto plus = problem_if_valid(model, base, *p, step);
+    const auto minus = problem_if_valid(model, base, *p, -step);
+    if (!plus && !minus) problem_with(model, base, *p, step);  // throws: why
     const auto side = [&](const std::optional<Problem>& pb) {  // the unperturbed run where invalid
       SimulationOutput out;
       if (pb) out = simulate(*pb, quiet);

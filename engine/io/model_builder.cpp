@@ -1,5 +1,6 @@
 #include "engine/io/model_builder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -213,22 +214,28 @@ void set_parameter(Problem& problem, const ParameterSpec& parameter, double valu
 }  // namespace
 
 namespace {
-// Each differentiated parameter's targets, and its seed on the fluid constants.
+// Each differentiated parameter's seeded targets, and its seed on the fluid constants: weight 1
+// on its own targets, or w_k on those of every parameter k a directional one weighs.
 void sensitivity_seeds(const pfem::v1::Model& model, const std::vector<std::string>& names, Problem& pb,
-                       std::vector<std::vector<std::string>>& targets) {
+                       std::vector<std::vector<SeedTarget>>& targets) {
+  const auto find = [&](const std::string& name) -> const pfem::v1::Parameter& {  // checked: it exists
+    return *std::find_if(model.parameters().begin(), model.parameters().end(),
+                         [&](const auto& q) { return q.name() == name; });
+  };
   for (const auto& name : names) {
+    const pfem::v1::Parameter& p = find(name);
+    std::vector<SeedTarget> seeded;
+    for (const auto& t : p.targets()) seeded.push_back({t, 1.0});
+    for (const auto& w : p.direction())  // validated: each names a parameter with targets
+      for (const auto& t : find(w.parameter()).targets()) seeded.push_back({t, w.weight()});
     fluid::FluidSeed seed;
-    targets.emplace_back();
-    for (const auto& p : model.parameters()) {
-      if (p.name() != name) continue;
-      for (const auto& t : p.targets()) {
-        targets.back().push_back(t);
-        if (t == "fluid.rho") seed.rho = 1.0;
-        else if (t == "fluid.mu") seed.mu = 1.0;
-        else if (t == "fluid.kappa") seed.kappa = 1.0;
-        else if (t == "thickness") seed.thickness = 1.0;
-      }
+    for (const auto& [t, weight] : seeded) {
+      if (t == "fluid.rho") seed.rho += weight;
+      else if (t == "fluid.mu") seed.mu += weight;
+      else if (t == "fluid.kappa") seed.kappa += weight;
+      else if (t == "thickness") seed.thickness += weight;
     }
+    targets.push_back(std::move(seeded));
     pb.sensitivity_params.push_back(name);
     pb.fluid_seeds.push_back(seed);
   }
@@ -276,7 +283,7 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
   // The model with every parameter's value on its targets (the structure is built from it).
   pfem::v1::Model with_values = model;
   apply_parameter_overrides(with_values);
-  std::vector<std::vector<std::string>> sensitivity_targets;
+  std::vector<std::vector<SeedTarget>> sensitivity_targets;
   sensitivity_seeds(model, sensitivity_params, pb, sensitivity_targets);
   std::vector<std::vector<std::array<std::int32_t, 2>>> wall_pieces;
   auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments, pb, wall_pieces);
@@ -349,10 +356,14 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
   }
   // A parameter without a value takes its first target's value after every override, so that it
   // never undoes another parameter that sets the same target.
+  // A directional parameter sets nothing: its value is 0, its point its parameters'.
   for (const auto& p : model.parameters()) {
-    ParameterSpec spec{p.name(), {p.targets().begin(), p.targets().end()}, 0.0};
-    spec.value = p.has_value() ? p.value() : model_target_value(with_values, spec.targets.front());
-    set_parameter(pb, spec, spec.value);
+    ParameterSpec spec{p.name(), {p.targets().begin(), p.targets().end()}, 0.0, {}};
+    for (const auto& w : p.direction()) spec.direction.emplace_back(w.parameter(), w.weight());
+    if (!spec.targets.empty()) {
+      spec.value = p.has_value() ? p.value() : model_target_value(with_values, spec.targets.front());
+      set_parameter(pb, spec, spec.value);
+    }
     pb.parameters.push_back(spec);
   }
   pb.nodes.set_num_params(static_cast<int>(sensitivity_params.size()));

@@ -399,7 +399,11 @@ void ModelChecker::check_parameters() {
     const std::string path = at("parameters", i);
     if (p.name().empty()) error(path + ".name", "is required");
     else if (!names.insert(p.name()).second) error(path + ".name", "'" + p.name() + "' is used twice");
-    if (p.targets_size() == 0) error(path + ".targets", "needs at least one target");
+    if (p.direction_size() > 0) {
+      check_direction(p, path);
+      continue;
+    }
+    if (p.targets_size() == 0) error(path + ".targets", "needs at least one target (or a direction)");
     std::set<std::string> seen;
     std::vector<std::string> targets;
     for (int k = 0; k < p.targets_size(); ++k) {
@@ -414,6 +418,27 @@ void ModelChecker::check_parameters() {
       if (!std::isfinite(p.value())) error(path + ".value", "must be a finite number");
       else for (const auto& t : targets) check_target_value(t, p.value(), path + ".value");
     }
+  }
+}
+
+void ModelChecker::check_direction(const pfem::v1::Parameter& p, const std::string& path) {
+  if (p.targets_size() > 0)
+    error(path + ".targets", "a directional parameter has no targets (its direction's parameters have them)");
+  if (p.has_value())
+    error(path + ".value", "a directional parameter has no value of its own (its point is its parameters')");
+  std::set<std::string> seen;
+  for (int k = 0; k < p.direction_size(); ++k) {
+    const auto& w = p.direction(k);
+    const std::string at_k = at(path + ".direction", k);
+    const auto named = std::find_if(model_.parameters().begin(), model_.parameters().end(),
+                                    [&](const auto& q) { return q.name() == w.parameter(); });
+    if (named == model_.parameters().end())
+      error(at_k + ".parameter", "no parameter '" + w.parameter() + "' in the model");
+    else if (named->direction_size() > 0)
+      error(at_k + ".parameter", "'" + w.parameter() + "' is directional: a direction weighs parameters with targets");
+    else if (!seen.insert(w.parameter()).second)
+      error(at_k + ".parameter", "'" + w.parameter() + "' is listed twice");
+    if (!std::isfinite(w.weight())) error(at_k + ".weight", "must be a finite number");
   }
 }
 

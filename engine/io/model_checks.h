@@ -68,6 +68,7 @@ class ModelChecker {
   void check_analysis();
   void check_recorders();
   void check_parameters();
+  void check_direction(const pfem::v1::Parameter& p, const std::string& path);
   void check_domain();
 
   void collect_structure_names();

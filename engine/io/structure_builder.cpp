@@ -57,7 +57,7 @@ struct TargetSeeds {
   std::vector<std::vector<double>> rho;  // per beam
 };
 
-TargetSeeds target_seeds(const pfem::v1::Model& model, const std::vector<std::vector<std::string>>& targets) {
+TargetSeeds target_seeds(const pfem::v1::Model& model, const std::vector<std::vector<SeedTarget>>& targets) {
   const auto& st = model.structure();
   const int P = static_cast<int>(targets.size());
   TargetSeeds seeds{std::vector(P, std::vector<structure::BilinearParameters>(st.materials_size())),
@@ -66,7 +66,7 @@ TargetSeeds target_seeds(const pfem::v1::Model& model, const std::vector<std::ve
   std::vector<FieldError> errors;
   for (int k = 0; k < P; ++k) {
     for (int j = 0; j < static_cast<int>(targets[k].size()); ++j) {
-      const std::string& target = targets[k][j];
+      const auto& [target, weight] = targets[k][j];
       try {
         model_target_value(model, target, at(at("sensitivity_targets", k), j));  // resolves
       } catch (const ModelError& e) {
@@ -77,16 +77,16 @@ TargetSeeds target_seeds(const pfem::v1::Model& model, const std::vector<std::ve
       const std::string& p = ref.property;
       if (ref.kind == "material") {
         auto& m = seeds.material[k][find_named(st.materials(), ref.name)];
-        (p == "e" ? m.e0 : p == "fy" ? m.fy : m.b) += 1.0;
+        (p == "e" ? m.e0 : p == "fy" ? m.fy : m.b) += weight;
       } else if (ref.kind == "section") {
         auto& s = seeds.section[k][find_named(st.sections(), ref.name)];
         (p == "width"   ? s.rectangle.width
          : p == "depth" ? s.rectangle.depth
          : p == "e"     ? s.elastic.E
          : p == "area"  ? s.elastic.A
-                        : s.elastic.I) += 1.0;
+                        : s.elastic.I) += weight;
       } else if (ref.kind == "beam") {
-        seeds.rho[k][find_named(st.beams(), ref.name)] += 1.0;
+        seeds.rho[k][find_named(st.beams(), ref.name)] += weight;
       }  // fluid and thickness targets belong to the fluid
     }
   }
@@ -212,7 +212,7 @@ void apply_parameter_overrides(pfem::v1::Model& model) {
 }
 
 StructureBuild build_structure(const pfem::v1::Model& model,
-                               const std::vector<std::vector<std::string>>& sensitivity_targets) {
+                               const std::vector<std::vector<SeedTarget>>& sensitivity_targets) {
   if (auto errors = validate_structure(model); !errors.empty()) throw ModelError(std::move(errors));
   StructureBuild out;
   if (!model.has_structure()) return out;

@@ -20,6 +20,14 @@
 
 namespace pfem {
 
+// A DDM seed on one parameter target (same forms as Parameter.targets): d target / d theta =
+// weight, 1 for a parameter's own targets, w_k for those of the parameters a directional one
+// weighs (model.proto, Parameter.direction).
+struct SeedTarget {
+  std::string target;
+  double weight = 1.0;
+};
+
 struct StructureBuild {
   structure::StructureModel model;
   std::map<std::string, int> node_index;     // every node by name, generated ones included
@@ -37,13 +45,13 @@ struct StructureBuild {
 // field paths ("structure.materials[1].bilinear.fy: must be > 0"); a std::invalid_argument
 // from engine/structure is reported at the path of the field it names.
 //
-// DDM: sensitivity_targets[k] lists the targets of parameter theta_k (same forms as
-// Parameter.targets). Each structural target seeds its constant with 1 (several targets of one
-// parameter add up; derived constants follow, e.g. A = b d and I = b d^3/12 of an elastic beam
-// built from a rectangle); "fluid.*" and "thickness" are ignored. The model is then sized for
+// DDM: sensitivity_targets[k] lists the seeded targets of parameter theta_k. Each structural
+// target seeds its constant with its weight (several seeds of one parameter on one constant add
+// up; derived constants follow, e.g. A = b d and I = b d^3/12 of an elastic beam built from a
+// rectangle); "fluid.*" and "thickness" are ignored. The model is then sized for
 // P = sensitivity_targets.size() parameters. Errors at "sensitivity_targets[k][j]".
 StructureBuild build_structure(const pfem::v1::Model& model,
-                               const std::vector<std::vector<std::string>>& sensitivity_targets = {});
+                               const std::vector<std::vector<SeedTarget>>& sensitivity_targets = {});
 
 // The current value of a parameter target (thickness: 1 when absent; material e: E of an
 // elastic material, E0 of a bilinear one). Throws ModelError at `path` for a target of an

@@ -175,6 +175,39 @@ TEST(ModelValidation, UnknownParameterTarget) {
   expect_single_error(validate_model(m), path, "unknown target 'structure.materials[0].E'");
 }
 
+TEST(ModelValidation, DirectionalParameters) {
+  auto m = valid_model();  // parameters rho_f, mu, kappa
+  const auto add = [&m](const std::string& name,
+                        const std::vector<std::pair<std::string, double>>& weights) {
+    auto* p = m.add_parameters();
+    p->set_name(name);
+    for (const auto& [parameter, weight] : weights) {
+      auto* w = p->add_direction();
+      w->set_parameter(parameter);
+      w->set_weight(weight);
+    }
+    return p;
+  };
+  add("along", {{"rho_f", 0.5}, {"kappa", -2e6}, {"mu", 0.0}});
+  EXPECT_TRUE(validate_model(m).empty()) << describe(validate_model(m));
+  add("bad", {{"nu", 1.0}, {"along", 1.0}, {"mu", NAN}, {"rho_f", 1.0}, {"rho_f", 2.0}});
+  add("both", {{"mu", 1.0}})->add_targets("fluid.mu");
+  add("valued", {{"mu", 1.0}})->set_value(1.0);
+  const auto errors = validate_model(m);
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"parameters[4].direction[0].parameter", "no parameter 'nu' in the model"},
+      {"parameters[4].direction[1].parameter", "'along' is directional"},
+      {"parameters[4].direction[2].weight", "must be a finite number"},
+      {"parameters[4].direction[4].parameter", "'rho_f' is listed twice"},
+      {"parameters[5].targets", "a directional parameter has no targets"},
+      {"parameters[6].value", "a directional parameter has no value of its own"}};
+  ASSERT_EQ(errors.size(), expected.size()) << describe(errors);
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(errors[i].path, expected[i].first);
+    EXPECT_NE(errors[i].message.find(expected[i].second), std::string::npos) << errors[i].message;
+  }
+}
+
 TEST(ModelValidation, TimeStepLongerThanTheAnalysis) {
   auto m = valid_model();
   m.mutable_analysis()->set_dt(1.0);

@@ -205,17 +205,17 @@ constexpr const char* kFrame = R"({
   }
 })";
 
-const std::vector<std::vector<std::string>> kTargets{
-    {"material.soft.e", "material.steel.e"},  // one parameter, two materials
-    {"section.rect.width"},                   // elastic beams from a rectangle: A, I
-    {"section.fib.depth", "fluid.rho"},       // the fluid target is not the structure's
-    {"material.steel.fy"},
-    {"material.steel.hardening_ratio"},
-    {"section.el.e"},
-    {"section.el.area"},
-    {"section.el.inertia"},
-    {"beam.plastic.rho", "beam.arm.rho"},
-    {"section.rect.depth", "section.rect.width"}};
+const std::vector<std::vector<SeedTarget>> kTargets{
+    {{"material.soft.e"}, {"material.steel.e"}},  // one parameter, two materials
+    {{"section.rect.width"}},                     // elastic beams from a rectangle: A, I
+    {{"section.fib.depth"}, {"fluid.rho"}},       // the fluid target is not the structure's
+    {{"material.steel.fy"}},
+    {{"material.steel.hardening_ratio"}},
+    {{"section.el.e"}},
+    {{"section.el.area"}},
+    {{"section.el.inertia"}},
+    {{"beam.plastic.rho"}, {"beam.arm.rho"}},
+    {{"section.rect.depth"}, {"section.rect.width"}}};
 
 // A displacement of every dof that yields the steel (the clamped base at 0).
 Eigen::VectorXd frame_displacement(const structure::StructureModel& m) {
@@ -239,8 +239,8 @@ TEST(StructureBuilderSensitivity, SeedsFromTargetsMatchRebuiltModels) {
 
   const auto rebuilt = [&](int k, double shift) {
     pfem::v1::Model changed = model;
-    for (const std::string& target : kTargets[k])
-      set_model_target(changed, target, model_target_value(model, target) + shift);
+    for (const auto& seed : kTargets[k])
+      set_model_target(changed, seed.target, model_target_value(model, seed.target) + shift);
     structure::StructureModel r = build_structure(changed).model;
     r.set_trial_displacement(u);
     Eigen::MatrixXd out(m.num_dofs(), 3);
@@ -250,9 +250,9 @@ TEST(StructureBuilderSensitivity, SeedsFromTargetsMatchRebuiltModels) {
   double worst = 0.0;
   for (int k = 0; k < m.num_parameters(); ++k) {
     double h = 1e300;
-    for (const std::string& target : kTargets[k])
-      if (target != "fluid.rho")
-        h = std::min(h, structure::kRelativeStep * model_target_value(model, target));
+    for (const auto& seed : kTargets[k])
+      if (seed.target != "fluid.rho")
+        h = std::min(h, structure::kRelativeStep * model_target_value(model, seed.target));
     const Eigen::MatrixXd fd = (rebuilt(k, h) - rebuilt(k, -h)) / (2 * h);
     const std::string what = "parameter " + std::to_string(k);
     EXPECT_GT(fd.col(0).norm() + fd.col(1).norm(), 0.0) << what;  // every parameter acts
@@ -264,6 +264,37 @@ TEST(StructureBuilderSensitivity, SeedsFromTargetsMatchRebuiltModels) {
   std::cout << "max relative error " << worst << "\n";
 }
 
+// A directional parameter's seeds: every target of kTargets[k] with weight w_k, in one
+// parameter. Its force, mass and damping sensitivities are sum_k w_k of kTargets[k]'s (the
+// seeds enter linearly), to rounding.
+TEST(StructureBuilderSensitivity, WeightedSeedsGiveTheWeightedSumOfTheSensitivities) {
+  const pfem::v1::Model model = parse_model_json(kFrame);
+  const std::vector<double> w = {0.7, -2.5, 1e-3, 4.0, -0.3, 1.5, 0.0, -1.25, 3.0, 0.2};
+  ASSERT_EQ(w.size(), kTargets.size());
+  std::vector<SeedTarget> combined;
+  for (std::size_t k = 0; k < kTargets.size(); ++k)
+    for (const auto& seed : kTargets[k]) combined.push_back({seed.target, w[k]});
+  structure::StructureModel each = build_structure(model, kTargets).model;
+  structure::StructureModel one = build_structure(model, {combined}).model;
+  ASSERT_EQ(one.num_parameters(), 1);
+  const Eigen::VectorXd a = Eigen::VectorXd::LinSpaced(each.num_dofs(), -1.0, 2.0);
+  const Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(each.num_dofs(), 0.5, -1.5);
+  for (auto* m : {&each, &one}) m->set_trial_displacement(frame_displacement(*m));
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(each.num_dofs(), 3);
+  for (int k = 0; k < each.num_parameters(); ++k) {
+    expected.col(0) += w[k] * each.resisting_force_sensitivity(k);
+    expected.col(1) += w[k] * each.mass_sensitivity_times(k, a);
+    expected.col(2) += w[k] * each.damping_sensitivity_times(k, v);
+  }
+  Eigen::MatrixXd got(one.num_dofs(), 3);
+  got << one.resisting_force_sensitivity(0), one.mass_sensitivity_times(0, a),
+      one.damping_sensitivity_times(0, v);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_GT(expected.col(c).norm(), 0.0) << c;
+    EXPECT_LE((got.col(c) - expected.col(c)).norm(), 1e-13 * expected.col(c).norm()) << c;
+  }
+}
+
 TEST(StructureBuilderSensitivity, NoTargetsNoParameters) {
   EXPECT_EQ(build_structure(parse_model_json(kFrame)).model.num_parameters(), 0);
 }
@@ -271,7 +302,7 @@ TEST(StructureBuilderSensitivity, NoTargetsNoParameters) {
 TEST(StructureBuilderSensitivity, UnknownTargetIsReportedAtItsPath) {
   try {
     build_structure(parse_model_json(kFrame),
-                    {{"material.soft.e"}, {"thickness", "material.none.fy"}});
+                    {{{"material.soft.e"}}, {{"thickness"}, {"material.none.fy"}}});
     FAIL() << "expected ModelError";
   } catch (const ModelError& e) {
     ASSERT_EQ(e.errors().size(), 1u);
