@@ -65,15 +65,19 @@ void slide_walls(const Problem& problem, const mesh::FluidMesh& previous, NodeSt
   }
 }
 
-// Remeshes nodes after the step that used previous (see RemeshOptions::previous_boundary), with
-// the wall nodes slid to its contact lines first.
+// Remeshes nodes after the step that used previous for a step of dt (see
+// RemeshOptions::previous_boundary, previous_triangles), with the wall nodes slid to its contact
+// lines first.
 mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& previous, NodeState& nodes,
-                             mesh::RemeshOptions options) {
+                             mesh::RemeshOptions options, double dt) {
   slide_walls(problem, previous, nodes);
   std::vector<std::uint8_t> boundary(previous.free_surface.size());
   for (std::size_t i = 0; i < boundary.size(); ++i)
     boundary[i] = previous.free_surface[i] || (nodes.kind[i] == mesh::NodeKind::Fluid && !previous.in_mesh[i]);
   options.previous_boundary = boundary;
+  options.previous_triangles = previous.triangles;
+  options.vx = nodes.vx, options.vy = nodes.vy;
+  options.dt = dt;
   return mesh::remesh(nodes.x, nodes.y, nodes.kind, options);
 }
 
@@ -102,7 +106,7 @@ int advance_adaptive(const Problem& problem, UnifiedStep& step, mesh::FluidMesh&
       const auto t0 = Clock::now();
       // Particles squeezed together in the first half would only come closer in a shorter step.
       sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind, removal_distance);
-      mesh = remesh_after(problem, mesh, nodes, remesh_options);
+      mesh = remesh_after(problem, mesh, nodes, remesh_options, settings.dt);
       sum.remesh_seconds += since(t0);
     }
     iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, nodes, removal_distance, cancel, sum,
@@ -231,7 +235,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
     try {
       if (n > 1) {  // the step-1 mesh is the initial one
         const auto t0 = Clock::now();
-        mesh = remesh_after(problem, mesh, nodes, remesh_options);
+        mesh = remesh_after(problem, mesh, nodes, remesh_options, settings.dt);
         sum.remesh_seconds += since(t0);
       }
       const int iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, nodes,

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -105,6 +106,25 @@ bool passes_alpha_test(const Point& p0, const Point& p1, const Point& p2, double
   const double wx = p2.x() - p1.x(), wy = p2.y() - p1.y();
   const double abc = std::sqrt((ux * ux + uy * uy) * (vx * vx + vy * vy) * (wx * wx + wy * wy));
   return abc <= 2.0 * cross * max_radius;  // R = abc / (2 * cross)
+}
+
+// Whether the corners i of a triangle move as water does (RemeshOptions::previous_triangles):
+// the divergence of their linear velocity field against its rate of strain.
+bool moves_as_water(const std::array<std::int32_t, 3>& i, std::span<const double> x, std::span<const double> y,
+                    const RemeshOptions& options) {
+  const double D = (x[i[1]] - x[i[0]]) * (y[i[2]] - y[i[0]]) - (x[i[2]] - x[i[0]]) * (y[i[1]] - y[i[0]]);
+  if (!(D > 0.0)) return false;  // fails the alpha test anyway
+  double uxx = 0.0, uxy = 0.0, uyx = 0.0, uyy = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const std::int32_t b = i[(a + 1) % 3], c = i[(a + 2) % 3];
+    const double nx = (y[b] - y[c]) / D, ny = (x[c] - x[b]) / D;  // grad of corner a's shape function
+    uxx += options.vx[i[a]] * nx, uxy += options.vx[i[a]] * ny;
+    uyx += options.vy[i[a]] * nx, uyy += options.vy[i[a]] * ny;
+  }
+  const double div = uxx + uyy, shear = 0.5 * (uxy + uyx);
+  const double strain = std::sqrt(uxx * uxx + uyy * uyy + 2.0 * shear * shear);
+  // A relative area change below 1e-6 a step is still water whatever the ratio (round-off).
+  return std::abs(div) <= 0.5 * strain || std::abs(div) * options.dt <= 1e-6 || div * options.dt <= -1.0;
 }
 
 // CGAL merges coincident points into one vertex, and its range insert leaves on that vertex
@@ -208,6 +228,22 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
     return static_cast<std::size_t>(i) < options.previous_boundary.size() && options.previous_boundary[i] != 0;
   };
   mesh.triangles.reserve(tri.number_of_faces());
+  const bool gap_test = !options.vx.empty();
+  std::set<std::array<std::int32_t, 3>> previous;  // corners sorted
+  if (gap_test) {
+    for (auto t : options.previous_triangles) {
+      std::sort(t.begin(), t.end());
+      previous.insert(t);
+    }
+  }
+  const auto spans_gap = [&](std::int32_t i0, std::int32_t i1, std::int32_t i2) {
+    if (!gap_test) return false;
+    for (const std::int32_t i : {i0, i1, i2})
+      if (kind[i] != NodeKind::Fluid || !was_boundary(i)) return false;
+    std::array<std::int32_t, 3> sorted{i0, i1, i2};
+    std::sort(sorted.begin(), sorted.end());
+    return previous.count(sorted) == 0;
+  };
   for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
     const std::int32_t i0 = f->vertex(0)->info();
     const std::int32_t i1 = f->vertex(1)->info();
@@ -215,7 +251,8 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
     const bool touches_fluid = kind[i0] == NodeKind::Fluid || kind[i1] == NodeKind::Fluid ||
                                kind[i2] == NodeKind::Fluid;
     const bool kept =
-        touches_fluid && passes_alpha_test(f->vertex(0)->point(), f->vertex(1)->point(),
+        touches_fluid && (!spans_gap(i0, i1, i2) || moves_as_water({i0, i1, i2}, x, y, options)) &&
+        passes_alpha_test(f->vertex(0)->point(), f->vertex(1)->point(),
                                            f->vertex(2)->point(),
                                            was_boundary(i0) && was_boundary(i1) && was_boundary(i2)
                                                ? boundary_radius

@@ -13,6 +13,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -865,3 +866,34 @@ TEST(Remesher, TimingOfJitteredGrids) {
 }
 
 }  // namespace
+
+// Two free surfaces 0.8 h apart (every particle on the previous boundary, no triangle between
+// them before): the alpha test alone would close the gap. It closes only where the particles
+// move as water does: not while the surfaces approach head-on (the air would become water), but
+// when they translate or shear together, when they meet within the step, or where the triangles
+// were water already.
+TEST(Remesher, AGapBetweenSurfacesClosesOnlyWhereItsParticlesMoveAsWater) {
+  constexpr double h = 0.01;
+  Nodes n;
+  for (int i = 0; i <= 10; ++i) n.add(i * h, 0.0, NodeKind::Fluid);
+  for (int i = 0; i < 10; ++i) n.add((i + 0.5) * h, 0.8 * h, NodeKind::Fluid);
+  const std::vector<std::uint8_t> boundary(n.x.size(), 1);
+  const auto remesh = [&](double upper_vx, double upper_vy, double dt, std::span<const Triangle> previous) {
+    std::vector<double> vx(n.x.size(), 0.0), vy(n.x.size(), 0.0);
+    for (std::size_t i = 11; i < n.x.size(); ++i) vx[i] = upper_vx, vy[i] = upper_vy;
+    RemeshOptions options{h, 1.2};
+    options.previous_boundary = boundary;
+    options.previous_triangles = previous;
+    options.vx = vx, options.vy = vy;
+    options.dt = dt;
+    return pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles;
+  };
+  const auto all = n.remesh(h, 1.2).triangles;
+  ASSERT_EQ(all.size(), 19u);
+  EXPECT_TRUE(remesh(0.0, -1.0, 1e-3, {}).empty());            // closing at 1 m/s: 0.125 of the gap a step
+  EXPECT_TRUE(remesh(0.0, 1.0, 1e-3, {}).empty());             // opening
+  EXPECT_EQ(remesh(0.0, -10.0, 1e-3, {}).size(), all.size());  // meets within the step
+  EXPECT_EQ(remesh(1.0, 0.0, 1e-3, {}).size(), all.size());    // shear
+  EXPECT_EQ(remesh(0.0, 0.0, 1e-3, {}).size(), all.size());    // at rest
+  EXPECT_EQ(remesh(0.0, -1.0, 1e-3, all).size(), all.size());  // water already
+}
