@@ -44,12 +44,15 @@ struct JobManager::ActiveJob {
   std::atomic<bool> interrupted{false};  // stopped by a shutdown: back to QUEUED
 
   void update(const std::function<void(pfem::v1::Job&)>& change) {
-    {
-      std::lock_guard lock(m);
-      change(job);
-      ++version;
-    }
+    update_quietly(change);
     cv.notify_all();
+  }
+  // Progress: a new version, but no watcher is woken (each looks every WatchJob interval;
+  // waking 300 watchers at every step had cut a job from 481 to 171 steps/s).
+  void update_quietly(const std::function<void(pfem::v1::Job&)>& change) {
+    std::lock_guard lock(m);
+    change(job);
+    ++version;
   }
   pfem::v1::Job snapshot() {
     std::lock_guard lock(m);
@@ -323,7 +326,7 @@ void JobManager::run_job(const std::shared_ptr<ActiveJob>& entry) {
         request->has_timeout_seconds() ? std::optional<double>(request->timeout_seconds())
                                        : std::nullopt;
     options.progress = [entry, started, timeout](const Progress& p) {
-      entry->update([&](pfem::v1::Job& job) { *job.mutable_progress() = to_proto(p); });
+      entry->update_quietly([&](pfem::v1::Job& job) { *job.mutable_progress() = to_proto(p); });
       if (timeout && std::chrono::duration<double>(std::chrono::steady_clock::now() - started)
                              .count() > *timeout) {
         entry->timed_out = true;

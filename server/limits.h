@@ -17,6 +17,9 @@ struct Limits {
   // points took 3.4 CPU-s to validate, growing with their square.
   long max_geometry_points = 200;   // points of all walls and fluid polygons (--max-geometry-points)
   long max_fiber_points = 100000;   // beam elements x integration points x fibers (--max-fiber-points)
+  // WatchJob and GetResult streams open at once (server/stream_slots.h).
+  long max_streams = 256;            // in total (--max-streams)
+  long max_streams_per_client = 64;  // of one client address (--max-streams-per-client)
 };
 
 // Throws ServiceError(RESOURCE_EXHAUSTED) naming the limit when validating or building the

@@ -92,12 +92,14 @@ inline std::unique_ptr<pfem::v1::GradientService::Stub> make_stub(const std::str
 }
 
 // Health of one service ("" = the server).
-inline grpc::Status health_check(const std::string& address, const std::string& service, int* serving_status) {
+inline grpc::Status health_check(const std::string& address, const std::string& service,
+                                 int* serving_status, const std::string& token = "") {
   auto channel = grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
   grpc::GenericStub stub(channel);
   grpc::CompletionQueue cq;
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  if (!token.empty()) context.AddMetadata("authorization", "Bearer " + token);
   std::string encoded;  // HealthCheckRequest{service}: field 1, length-delimited
   if (!service.empty()) encoded = std::string{0x0a, static_cast<char>(service.size())} + service;
   grpc::Slice slice(encoded);
