@@ -17,6 +17,14 @@ void check_model_cost(const pfem::v1::Model& model, const Limits& limits) {
                            std::to_string(points) + " points, the limit is " +
                            std::to_string(limits.max_geometry_points));
   }
+  const long wall_nodes = count_wall_nodes(model);
+  if (wall_nodes > limits.max_wall_nodes) {
+    throw ServiceError(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                       "max-wall-nodes limit exceeded: the walls make " +
+                           std::to_string(wall_nodes) +
+                           " wall nodes (their length / mesh.h), the limit is " +
+                           std::to_string(limits.max_wall_nodes));
+  }
   const long fibers = count_fiber_points(model);
   if (fibers > limits.max_fiber_points) {
     throw ServiceError(grpc::StatusCode::RESOURCE_EXHAUSTED,

@@ -160,6 +160,9 @@ void ModelChecker::check_mesh() {
   if (const long particles = estimate_particles(model_); particles > kMaxParticles)
     error("mesh.h", "gives about " + std::to_string(particles) + " fluid particles, more than the " +
                         std::to_string(kMaxParticles) + " a run may take");
+  if (const long nodes = count_wall_nodes(model_); nodes > kMaxWallNodes)
+    error("mesh.h", "gives " + std::to_string(nodes) + " wall nodes (wall length / mesh.h), more than the " +
+                        std::to_string(kMaxWallNodes) + " a model may have");
   if (model_.mesh().has_alpha()) {
     const double a = model_.mesh().alpha();
     if (!std::isfinite(a) || a < 0.8 || a > 3.0) error("mesh.alpha", "must be in [0.8, 3]");

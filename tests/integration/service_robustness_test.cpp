@@ -272,6 +272,19 @@ TEST(ServiceRobustness, ModelCostIsBoundedBeforeValidationStarts) {
     EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   }
 
+  // Two points far apart are few points but many wall nodes (found by the request fuzzer: a
+  // wall point at y = -1.9e57 passed every check, and building it overflowed an int).
+  auto long_wall = fake_request();
+  auto* far = long_wall.mutable_model()->mutable_walls(0)->mutable_points(1);
+  far->set_y(-1.9e57);
+  status = submit(*stub, long_wall, &id);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << status.error_message();
+  EXPECT_TRUE(mentions(status, "max-wall-nodes limit exceeded: the walls make 1000000000000000 "
+                               "wall nodes (their length / mesh.h), the limit is 20000"));
+  far->set_y(-100.0);  // two 100 m walls at h = 0.01: just past the 20 000
+  status = submit(*stub, long_wall, &id);
+  EXPECT_TRUE(mentions(status, "max-wall-nodes limit exceeded"));
+
   auto fibers = fake_request();
   auto* structure = fibers.mutable_model()->mutable_structure();
   auto* section = structure->add_sections();

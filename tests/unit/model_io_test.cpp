@@ -16,6 +16,7 @@
 
 #include "engine/analysis/run.h"
 #include "engine/io/model_io.h"
+#include "engine/io/model_size.h"
 
 namespace pfem {
 namespace {
@@ -75,6 +76,18 @@ TEST(ModelValidation, ZeroParticleSpacing) {
   auto m = valid_model();
   m.mutable_mesh()->set_h(0.0);
   expect_single_error(validate_model(m), "mesh.h", "must be > 0");
+}
+
+// Wall length / h, not the points, is what building costs: two points 1e57 m apart validated
+// and overflowed an int in the builder (found by the request fuzzer).
+TEST(ModelValidation, WallsOfTooManyNodes) {
+  auto m = valid_model();
+  EXPECT_EQ(count_wall_nodes(m), 100);  // the 0.2 m x 0.3 m box at h = 0.01
+  m.mutable_walls(0)->mutable_points(3)->set_y(-1.9e57);
+  EXPECT_EQ(count_wall_nodes(m), 1'000'000'000'000'000);
+  expect_single_error(validate_model(m), "mesh.h",
+                      "gives 1000000000000000 wall nodes (wall length / mesh.h), more than the "
+                      "100000 a model may have");
 }
 
 TEST(ModelValidation, BoundaryAlphaOutOfRange) {
