@@ -606,8 +606,14 @@ void ModelChecker::check_beams() {
       if (b.elements() >= 1 && std::isfinite(h) && h > 0 && length / n > kMaxBeamElementSpacings * h) {
         std::ostringstream why;
         why << "gives elements of " << length / n << " m, longer than " << kMaxBeamElementSpacings
-            << " mesh.h: water would pass between the beam's nodes; use at least "
-            << static_cast<long>(std::ceil(length / (kMaxBeamElementSpacings * h)));
+            << " mesh.h: water would pass between the beam's nodes; ";
+        // Compared as a double: a beam 1e200 m long needs more elements than a long holds.
+        const double needed = std::ceil(length / (kMaxBeamElementSpacings * h));
+        if (needed <= kMaxBeamElements) {
+          why << "use at least " << static_cast<long>(needed);
+        } else {
+          why << "it would need more than the " << kMaxBeamElements << " elements a beam may have";
+        }
         error(path + ".elements", why.str());
       }
     }

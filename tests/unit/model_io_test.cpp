@@ -90,6 +90,21 @@ TEST(ModelValidation, WallsOfTooManyNodes) {
                       "100000 a model may have");
 }
 
+// A beam node 6.6e197 m away: the advice on the element count had cast that count to a long
+// (undefined behaviour, found by the request fuzzer).
+TEST(ModelValidation, ABeamTooLongForAnyElementCountSaysSo) {
+  auto m = read_model_file(source("examples/sloshing-beam.json"));
+  m.mutable_structure()->mutable_nodes(0)->set_x(6.6e197);
+  const auto errors = validate_model(m);
+  const auto it = std::find_if(errors.begin(), errors.end(), [](const FieldError& e) {
+    return e.path == "structure.beams[0].elements";
+  });
+  ASSERT_NE(it, errors.end()) << describe(errors);
+  EXPECT_NE(it->message.find("it would need more than the 10000 elements a beam may have"),
+            std::string::npos)
+      << it->message;
+}
+
 TEST(ModelValidation, BoundaryAlphaOutOfRange) {
   auto m = valid_model();
   m.mutable_mesh()->set_boundary_alpha(0.3);
