@@ -39,7 +39,8 @@ struct JobManager::ActiveJob {
   pfem::v1::Job job;          // snapshot shown to GetJob / WatchJob
   std::uint64_t version = 0;  // bumped on every change of `job`
   std::atomic<bool> cancel{false};
-  std::atomic<bool> user_cancelled{false};
+  std::atomic<bool> user_cancelled{false};  // set under m, and only while !ending
+  bool ending = false;  // under m: the run is over and its end being decided (too late to cancel)
   std::atomic<bool> timed_out{false};
   std::atomic<bool> interrupted{false};  // stopped by a shutdown: back to QUEUED
 
@@ -166,16 +167,23 @@ pfem::v1::Job JobManager::cancel(const std::string& id) {
       }
     }
   }
-  if (entry && finished(entry->snapshot().state())) {  // ended, not yet out of the active list
-    throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
-                       "job '" + id + "' has already finished (" +
-                           pfem::v1::JobState_Name(entry->snapshot().state()) + ")");
-  }
   if (entry) {
+    // Under the job's lock, so that an acknowledged cancel is one the end sees: a run that
+    // has ended (the end being decided, or decided) is too late to cancel.
+    std::lock_guard lock(entry->m);
+    if (finished(entry->job.state())) {  // ended, not yet out of the active list
+      throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
+                         "job '" + id + "' has already finished (" +
+                             pfem::v1::JobState_Name(entry->job.state()) + ")");
+    }
+    if (entry->ending) {
+      throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
+                         "job '" + id + "' has already finished its run (its end is being stored)");
+    }
     store_.request_cancel(id);  // durable before it is acknowledged (kept over a crash)
     entry->user_cancelled = true;
     entry->cancel = true;
-    return entry->snapshot();
+    return entry->job;
   }
   if (auto job = unstored_job(id)) {
     throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
@@ -345,7 +353,12 @@ void JobManager::run_job(const std::shared_ptr<ActiveJob>& entry) {
   // The store is written first and the snapshot after, so that whoever sees the final
   // state (GetJob, WatchJob) also finds the stored result.
   try {
-    pfem::v1::Job job = entry->snapshot();
+    pfem::v1::Job job;
+    {
+      std::lock_guard lock(entry->m);
+      entry->ending = true;  // no cancel is acknowledged from here on
+      job = entry->job;
+    }
     if (entry->interrupted && !entry->user_cancelled) {
       job.set_state(pfem::v1::JOB_STATE_QUEUED);
       job.clear_progress();
@@ -383,6 +396,14 @@ void JobManager::run_job(const std::shared_ptr<ActiveJob>& entry) {
           note = "cancelled: " + error->message();
           break;
         default:
+          if (entry->user_cancelled) {  // acknowledged during the run's last step: kept
+            job.set_state(pfem::v1::JOB_STATE_CANCELLED);
+            error->set_message("cancelled by a client (the run had reached its end)");
+            error->set_step(s.steps());
+            error->set_time(job.progress().time());
+            note = "cancelled: " + error->message();
+            break;
+          }
           job.set_state(pfem::v1::JOB_STATE_SUCCEEDED);
           job.clear_error();
           note = "succeeded";
