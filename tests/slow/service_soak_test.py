@@ -98,11 +98,13 @@ class Server:
     def kill9(self):
         self.process.send_signal(signal.SIGKILL)
         self.process.wait()
+        self.process.stdout.close()
 
     def stop(self):
         if self.process.poll() is None:
             self.process.send_signal(signal.SIGTERM)
             self.process.wait(timeout=60)
+        self.process.stdout.close()
 
 
 class Ledger:
@@ -113,7 +115,7 @@ class Ledger:
         self.ops = collections.Counter()
         self.expected = collections.Counter()
         self.errors = []
-        self.acknowledged = set()      # job ids SubmitJob answered
+        self.acknowledged = {}         # job id SubmitJob answered -> when (time.monotonic())
         self.unacknowledged = 0        # submits that failed UNAVAILABLE (the job may exist)
         self.cancelled = set()         # job ids whose cancel was acknowledged
         self.references = {}           # model name -> result fingerprint
@@ -158,7 +160,7 @@ def client_loop(index, server, ledger, stop):
                             ledger.unacknowledged += 1
                     raise
                 with ledger.lock:
-                    ledger.acknowledged.add(job_id)
+                    ledger.acknowledged[job_id] = time.monotonic()
                 if op == "cancel":
                     time.sleep(rng.uniform(0.0, 0.3))
                     client.cancel(job_id)
@@ -251,8 +253,8 @@ class SoakTest(unittest.TestCase):
                     ledger.check_result(j.model_name, fingerprint(c.result(j.id)), j.id)
         by_id = {j.id: j for j in jobs}
         duplicates = len(ids) - len(set(ids))
-        lost = ledger.acknowledged - set(ids)
-        extra = set(ids) - ledger.acknowledged
+        lost = set(ledger.acknowledged) - set(ids)
+        extra = set(ids) - set(ledger.acknowledged)
         not_cancelled = [i for i in ledger.cancelled if by_id.get(i) and by_id[i].state != "CANCELLED"]
         failed = [i for i in ids if by_id[i].state == "FAILED"]
         reruns = sum(1 for j in jobs if j.attempts > 1)
@@ -270,6 +272,15 @@ class SoakTest(unittest.TestCase):
         print(f"unexpected errors: {len(ledger.errors)}")
         for e in ledger.errors[:20]:
             print("  " + e)
+        with Client(server.address) as c:
+            for i in sorted(lost)[:20]:
+                try:
+                    answer = c.get_job(i).state
+                except ServiceError as e:
+                    answer = e.code.name
+                print(f"  lost {i}: acknowledged {ledger.acknowledged[i] - started:.2f} s in "
+                      f"(kills at {', '.join(f'{k - started:.2f}' for k in kills)} s), "
+                      f"GetJob: {answer}")
 
         self.assertEqual(ledger.errors, [])
         self.assertEqual(duplicates, 0)
