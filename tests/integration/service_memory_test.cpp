@@ -31,24 +31,6 @@ pfem::v1::SubmitJobRequest big_result_job() {
   return request;
 }
 
-std::string submit(pfem::v1::GradientService::Stub& stub, const pfem::v1::SubmitJobRequest& r) {
-  grpc::ClientContext context;
-  pfem::v1::SubmitJobResponse response;
-  const auto status = stub.SubmitJob(&context, r, &response);
-  EXPECT_TRUE(status.ok()) << status.error_message();
-  return response.job_id();
-}
-
-std::size_t result_bytes(pfem::v1::GradientService::Stub& stub, const std::string& address,
-                         const std::string& id) {
-  pfem::client::ConnectionOptions connection;
-  connection.server = address;
-  pfem::v1::Result result;
-  const auto status = pfem::client::fetch_result(stub, connection, id, &result);
-  EXPECT_TRUE(status.ok()) << status.error_message();
-  return result.ByteSizeLong();
-}
-
 // A GetResult stream opened and never read.
 struct Unread {
   grpc::ClientContext context;
@@ -66,10 +48,10 @@ TEST(ServiceMemory, NeverReadResultStreamsNeitherCopyTheResultNorExceedTheCap) {
   {
     ServerProcess first(flags);
     auto stub = make_stub(first.address());
-    id = submit(*stub, big_result_job());
+    id = submit_job(*stub, big_result_job());
     ASSERT_EQ(wait_for_state(*stub, id, pfem::v1::JOB_STATE_SUCCEEDED, 120).state(),
               pfem::v1::JOB_STATE_SUCCEEDED);
-    bytes = result_bytes(*stub, first.address(), id);
+    bytes = result_bytes(*stub, first.address(), id).size();
     ASSERT_GT(bytes, 20u << 20);
   }
   // A fresh server: its peak is the streams' alone.
@@ -125,7 +107,7 @@ TEST(ServiceMemory, NeverReadResultStreamsNeitherCopyTheResultNorExceedTheCap) {
   EXPECT_LT(peak_mb - start_mb, 3.0 * result_mb);
   EXPECT_LT(end_mb - start_mb, result_mb);
   // And the server still answers, the result intact.
-  EXPECT_EQ(result_bytes(*stub, server.address(), id), bytes);
+  EXPECT_EQ(result_bytes(*stub, server.address(), id).size(), bytes);
 }
 
 TEST(ServiceMemory, UnauthenticatedRequestsAreRefusedBeforeTheirBodyIsRead) {
@@ -181,7 +163,7 @@ std::pair<grpc::Status, bool> third_watch(long max_streams, long max_per_client)
   pfem::v1::SubmitJobRequest submit_request;
   *submit_request.mutable_model() = tiny_model();
   pfem::v1::JobRequest request;
-  request.set_job_id(submit(*stub, submit_request));
+  request.set_job_id(submit_job(*stub, submit_request));
   struct Watch {
     grpc::ClientContext context;
     std::unique_ptr<grpc::ClientReader<pfem::v1::Job>> reader;

@@ -23,14 +23,6 @@ pfem::v1::SubmitJobRequest hydrostatic(double t_end, pfem::v1::SensitivityMethod
   return request;
 }
 
-std::string submit(pfem::v1::GradientService::Stub& stub, const pfem::v1::SubmitJobRequest& r) {
-  grpc::ClientContext context;
-  pfem::v1::SubmitJobResponse response;
-  const auto status = stub.SubmitJob(&context, r, &response);
-  EXPECT_TRUE(status.ok()) << status.error_message();
-  return response.job_id();
-}
-
 // Waits until the job has completed at least `step` steps.
 pfem::v1::Job wait_for_step(pfem::v1::GradientService::Stub& stub, const std::string& id, int step) {
   pfem::v1::Job job;
@@ -40,29 +32,19 @@ pfem::v1::Job wait_for_step(pfem::v1::GradientService::Stub& stub, const std::st
   return job;
 }
 
-std::string result_bytes(pfem::v1::GradientService::Stub& stub, const std::string& address,
-                         const std::string& id) {
-  pfem::client::ConnectionOptions connection;
-  connection.server = address;
-  pfem::v1::Result result;
-  const auto status = pfem::client::fetch_result(stub, connection, id, &result);
-  EXPECT_TRUE(status.ok()) << status.error_message();
-  return result.SerializeAsString();
-}
-
 TEST(ServiceRestart, KillNineThenRestartKeepsResultsAndCompletesTheInterruptedJob) {
   TempDir dir("restart");
   std::string done_id, interrupted_id, done_bytes;
   {
     ServerProcess first(server_flags(dir.path, 5.0));
     auto stub = make_stub(first.address());
-    done_id = submit(*stub, hydrostatic(0.004, pfem::v1::SENSITIVITY_METHOD_FDM));
+    done_id = submit_job(*stub, hydrostatic(0.004, pfem::v1::SENSITIVITY_METHOD_FDM));
     ASSERT_EQ(wait_for_state(*stub, done_id, pfem::v1::JOB_STATE_SUCCEEDED, 60).state(),
               pfem::v1::JOB_STATE_SUCCEEDED);
     done_bytes = result_bytes(*stub, first.address(), done_id);
     ASSERT_GT(done_bytes.size(), 100u);
 
-    interrupted_id = submit(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
+    interrupted_id = submit_job(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
     const auto running = wait_for_step(*stub, interrupted_id, 2);
     ASSERT_EQ(running.state(), pfem::v1::JOB_STATE_RUNNING);
     ASSERT_LT(running.progress().step(), 200);
@@ -99,7 +81,7 @@ TEST(ServiceRestart, ACancelAcknowledgedBeforeKillNineStaysCancelled) {
   {
     ServerProcess first(server_flags(dir.path, 5.0));
     auto stub = make_stub(first.address());
-    id = submit(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
+    id = submit_job(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
     ASSERT_EQ(wait_for_step(*stub, id, 1).state(), pfem::v1::JOB_STATE_RUNNING);
     grpc::ClientContext context;
     pfem::v1::JobRequest request;
@@ -123,7 +105,7 @@ TEST(ServiceRestart, SigtermDrainsAndTheNextStartCompletesTheJob) {
   {
     ServerProcess first(server_flags(dir.path, 0.0));  // no grace: interrupt at once
     auto stub = make_stub(first.address());
-    id = submit(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
+    id = submit_job(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
     const auto running = wait_for_step(*stub, id, 1);
     ASSERT_EQ(running.state(), pfem::v1::JOB_STATE_RUNNING);
     ASSERT_LT(running.progress().step(), 200);
