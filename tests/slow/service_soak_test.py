@@ -7,10 +7,11 @@ cancel ending CANCELLED, the idle RSS within 20 % of the idle RSS after the warm
 error but the expected ones (UNAVAILABLE while the server is down or restarting;
 FAILED_PRECONDITION for a cancel that came after the job's end).
 
-Run by ctest (service_soak_test, label slow) with PYTHONPATH=build/python:clients/python and
-PFEM_SERVER=build/bin/pfem-server."""
+Run by ctest (service_soak_test, label slow) with PYTHONPATH=build/python:clients/python,
+PFEM_SERVER=build/bin/pfem-server and PFEM_SOURCE_DIR."""
 import collections
 import hashlib
+import json
 import os
 import random
 import shutil
@@ -30,20 +31,10 @@ SECONDS = float(os.environ.get("PFEM_SOAK_SECONDS", "600"))
 CLIENTS = 32
 WARM_UP = min(60.0, SECONDS / 10)
 
-TINY = {
-    "fluid": {"rho": 1000.0, "mu": 0.001, "kappa": 2.15e9},
-    "mesh": {"h": 0.01},
-    "fluid_regions": [{"name": "water", "rectangle": {"min": {"x": 0.0, "y": 0.0},
-                                                      "max": {"x": 0.05, "y": 0.04}}}],
-    "walls": [{"name": "box", "closed": True, "points": [
-        {"x": 0.0, "y": 0.0}, {"x": 0.05, "y": 0.0}, {"x": 0.05, "y": 0.08}, {"x": 0.0, "y": 0.08}]}],
-    "analysis": {"dt": 0.002, "t_end": 0.01},
-    "recorders": [
-        {"name": "bottom_p", "quantity": "p", "point": {"x": 0.025, "y": 0.0}},
-        {"name": "fluid_area", "quantity": "fluid_area"}],
-    "parameters": [{"name": "rho_f", "targets": ["fluid.rho"]},
-                   {"name": "kappa", "targets": ["fluid.kappa"]}],
-}
+# The Python client test's still water in a small box (5 x 4 particles, steps of 2 ms).
+with open(os.path.join(os.environ["PFEM_SOURCE_DIR"], "tests", "data", "tiny.json"),
+          encoding="utf-8") as f:
+    TINY = json.load(f)
 # The jobs, by model name: (t_end, sensitivity). "long" (1 000 steps) is the one cancelled.
 JOBS = {"soak-short": (0.02, "none"), "soak-ddm": (0.04, "ddm"), "soak-long": (2.0, "none")}
 RHO_VALUES = [980.0, 990.0, 1000.0, 1010.0, 1020.0]
