@@ -4,6 +4,7 @@
 
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
+#include "engine/io/model_warnings.h"
 #include "server/convert.h"
 #include "server/model_cost.h"
 #include "server/status.h"
@@ -98,8 +99,19 @@ pfem::v1::ValidateModelResponse check_validate_request(const pfem::v1::Model& mo
     fe->set_message(e.message);
   }
   response.set_valid(response.errors().empty());
-  response.set_estimated_particles(estimate_particles(model));
-  response.set_steps(count_steps(model, std::nullopt, std::nullopt));
+  if (response.valid()) {
+    for (const auto& w : model_warnings(model)) {
+      auto* fw = response.add_warnings();
+      fw->set_path(w.path);
+      fw->set_message(w.message);
+    }
+  }
+  const RunEstimate estimate = estimate_run(model);
+  response.set_estimated_particles(estimate.particles);
+  response.set_steps(estimate.steps);
+  response.set_estimated_elements(estimate.elements);
+  response.set_estimated_seconds(estimate.seconds);
+  response.set_seconds_per_particle_step(estimate.seconds_per_particle_step);
   try {
     check_run_limits(model, std::nullopt, std::nullopt, limits);
   } catch (const ServiceError& e) {

@@ -37,8 +37,8 @@ EvaluateRun check_evaluate_request(const pfem::v1::EvaluateRequest& request,
                                    pfem::v1::Model model, const Limits& limits);
 
 // ValidateModel's answer: every field error of a model within the cost limits (and what only
-// building finds, when it is within the particle limit too), the estimates, and the limit a
-// SubmitJob would exceed. Throws ServiceError(RESOURCE_EXHAUSTED) beyond the cost limits.
+// building finds, when it is within the particle limit too), the warnings of a valid one, the
+// run estimate, and the limit a SubmitJob would exceed. Throws ServiceError(RESOURCE_EXHAUSTED) beyond the cost limits.
 pfem::v1::ValidateModelResponse check_validate_request(const pfem::v1::Model& model,
                                                        const Limits& limits);
 

@@ -5,26 +5,9 @@
 #include <map>
 #include <utility>
 
+#include "engine/analysis/dual.h"
+
 namespace pfem {
-namespace {
-
-// Forward-mode dual number: a value and its derivative along one parameter.
-struct Dual {
-  double v = 0.0, d = 0.0;
-};
-Dual operator+(Dual a, Dual b) { return {a.v + b.v, a.d + b.d}; }
-Dual operator-(Dual a, Dual b) { return {a.v - b.v, a.d - b.d}; }
-Dual operator*(Dual a, Dual b) { return {a.v * b.v, a.d * b.v + a.v * b.d}; }
-Dual operator/(Dual a, Dual b) { return {a.v / b.v, (a.d * b.v - a.v * b.d) / (b.v * b.v)}; }
-
-// A node's coordinate or pressure with its sensitivity to parameter k (none for k < 0).
-Dual field(const NodeState& nodes, int i, int which, int k) {
-  const double value = which == NodeState::kDx ? nodes.x[i] : which == NodeState::kDy ? nodes.y[i] : nodes.p[i];
-  return {value, k >= 0 ? nodes.sensitivity(i, k)[which] : 0.0};
-}
-
-}  // namespace
-
 ProbeSite wave_gauge_site(const mesh::FluidMesh& mesh, const NodeState& nodes, double x) {
   // Boundary edges: those of one kept triangle only.
   std::map<std::pair<std::int32_t, std::int32_t>, int> uses;
@@ -46,8 +29,8 @@ ProbeSite wave_gauge_site(const mesh::FluidMesh& mesh, const NodeState& nodes, d
 
 double wave_gauge(const ProbeSite& site, const NodeState& nodes, double x, int k) {
   if (site.a < 0) return 0.0;
-  const Dual xa = field(nodes, site.a, NodeState::kDx, k), ya = field(nodes, site.a, NodeState::kDy, k);
-  const Dual xb = field(nodes, site.b, NodeState::kDx, k), yb = field(nodes, site.b, NodeState::kDy, k);
+  const Dual xa = node_dual(nodes, site.a, NodeState::kDx, k), ya = node_dual(nodes, site.a, NodeState::kDy, k);
+  const Dual xb = node_dual(nodes, site.b, NodeState::kDx, k), yb = node_dual(nodes, site.b, NodeState::kDy, k);
   const Dual y = ya + (Dual{x, 0.0} - xa) / (xb - xa) * (yb - ya);
   return k < 0 ? y.v : y.d;
 }
@@ -61,7 +44,7 @@ struct Barycentric {
 };
 Barycentric barycentric(const std::array<std::int32_t, 3>& t, const NodeState& nodes, double x, double y, int k) {
   std::array<Dual, 3> px, py;
-  for (int a = 0; a < 3; ++a) px[a] = field(nodes, t[a], NodeState::kDx, k), py[a] = field(nodes, t[a], NodeState::kDy, k);
+  for (int a = 0; a < 3; ++a) px[a] = node_dual(nodes, t[a], NodeState::kDx, k), py[a] = node_dual(nodes, t[a], NodeState::kDy, k);
   const Dual X{x, 0.0}, Y{y, 0.0};
   const auto twice_area = [](Dual ax, Dual ay, Dual bx, Dual by, Dual cx, Dual cy) {
     return (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
@@ -88,7 +71,7 @@ double pressure_at(const ProbeSite& site, const mesh::FluidMesh& mesh, const Nod
   const auto& t = mesh.triangles[site.triangle];
   const Barycentric b = barycentric(t, nodes, x, y, k);
   Dual p;
-  for (int a = 0; a < 3; ++a) p = p + b.part[a] / b.whole * field(nodes, t[a], NodeState::kDp, k);
+  for (int a = 0; a < 3; ++a) p = p + b.part[a] / b.whole * node_dual(nodes, t[a], NodeState::kDp, k);
   return k < 0 ? p.v : p.d;
 }
 

@@ -27,7 +27,8 @@ struct RecorderSpec {
   int component = 0;     // basic force: 0 = N, 1 = M_i, 2 = M_j
   int section_point = 0;  // fiber quantities: integration point and fiber (0 at the -y face)
   int fiber = 0;
-  double x = 0.0, y = 0.0;  // the point of a point quantity (pressure, wave_gauge)
+  double x = 0.0, y = 0.0;  // the point of a point quantity (pressure, wave_gauge), of a moment
+  std::vector<std::array<std::int32_t, 2>> pieces;  // force_x, force_y, moment: the boundary's node pairs
 };
 
 struct ParameterSpec {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/analysis/boundary_force.h"
 #include "engine/analysis/field_probes.h"
 #include "engine/fluid/mini_element.h"
 #include "engine/structure/disp_beam_column.h"
@@ -42,6 +43,14 @@ int fastest(const NodeState& nodes) {
   return best;
 }
 
+// force_x, force_y or moment of a boundary recorder, or its sensitivity to parameter k (k >= 0).
+double boundary_value(const RecorderSpec& r, const Problem& problem, const NodeState& nodes,
+                      const mesh::FluidMesh& mesh, int k = -1) {
+  const BoundaryLoad load = boundary_load(r.pieces, mesh, nodes, problem.fluid, problem.thickness, r.x, r.y,
+                                          k < 0 ? nullptr : &problem.fluid_seeds[k], k);
+  return r.quantity == "force_x" ? load.fx : r.quantity == "force_y" ? load.fy : load.moment;
+}
+
 // The fiber material a fiber_* recorder reads.
 const structure::UniaxialMaterial& fiber(const RecorderSpec& r, const structure::BeamColumn2d& beam) {
   const auto& disp = dynamic_cast<const structure::DispBeamColumn2d&>(beam);
@@ -74,6 +83,7 @@ std::vector<double> sample_recorders(const Problem& problem, const NodeState& no
     else if (r.quantity == "p") value = nodes.p[i];
     else if (r.quantity == "rz") value = nodes.rz[i];
     else if (r.element >= 0 && structure) value = element_value(r, *structure);
+    else if (!r.pieces.empty()) value = boundary_value(r, problem, nodes, mesh);
     else if (r.quantity == "fluid_area") value = fluid_area(mesh, nodes);
     else if (r.quantity == "wave_gauge") value = wave_gauge(wave_gauge_site(mesh, nodes, r.x), nodes, r.x);
     else if (r.quantity == "pressure") value = pressure_at(pressure_site(mesh, nodes, r.x, r.y), mesh, nodes, r.x, r.y);
@@ -116,6 +126,8 @@ std::vector<double> sample_recorder_sensitivities(const Problem& problem, const 
         value = nodes.sensitivity(node, k)[field];
       } else if (r.element >= 0 && structure) {
         value = element_value(r, *structure, k);
+      } else if (!r.pieces.empty()) {
+        value = boundary_value(r, problem, nodes, mesh, k);
       } else if (r.quantity == "fluid_area") {
         // d(A/2) with dA/dx_a = c_a, dA/dy_a = d_a.
         for (const auto& t : mesh.triangles) {

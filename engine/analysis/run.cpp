@@ -25,6 +25,12 @@ void check_options(const RunOptions& o, const Problem& pb, std::vector<const Par
     errors.push_back({"threads", "must be in [1, " + std::to_string(kMaxThreads) + "]"});
   if (!(std::isfinite(o.fdm_eps) && o.fdm_eps > 0 && o.fdm_eps < 0.1))
     errors.push_back({"fdm_eps", "must be in (0, 0.1)"});
+  if (o.checkpoint_every < 0) errors.push_back({"checkpoint_every", "must be >= 0"});
+  if (o.checkpoint_every > 0 && o.checkpoint_file.empty())
+    errors.push_back({"checkpoint_file", "is needed with checkpoint_every"});
+  if (o.sensitivity == SensitivityMethod::kFdm && (o.checkpoint_every > 0 || !o.restart_from.empty()))
+    errors.push_back({o.checkpoint_every > 0 ? "checkpoint_every" : "restart_from",
+                      "checkpoints are for runs without sensitivities or with the DDM (an FDM run is 2P + 1 runs)"});
   if (o.sensitivity != SensitivityMethod::kNone) {
     std::set<std::string> seen;
     for (const auto& name : o.params) {
@@ -40,10 +46,6 @@ void check_options(const RunOptions& o, const Problem& pb, std::vector<const Par
       errors.push_back({"params", "the model names no parameter to differentiate"});
   }
   if (!errors.empty()) throw ModelError(std::move(errors));
-}
-
-const char* method_name(SensitivityMethod m) {
-  return m == SensitivityMethod::kDdm ? "ddm" : m == SensitivityMethod::kFdm ? "fdm" : "none";
 }
 
 // The problem of the model with one parameter set to value: rebuilt from the model, so that
@@ -118,6 +120,10 @@ void finite_differences(const pfem::v1::Model& model, const Problem& base, const
 
 }  // namespace
 
+const char* method_name(SensitivityMethod m) {
+  return m == SensitivityMethod::kDdm ? "ddm" : m == SensitivityMethod::kFdm ? "fdm" : "none";
+}
+
 RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
   keep_blas_in_calling_thread();  // bit-identical results beside other runs and in any program
   Problem problem = build_problem(model);
@@ -137,8 +143,15 @@ RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
     with_seeds->t_end = problem.t_end, with_seeds->dt = problem.dt;
   }
 
+  Checkpointing checkpoints{options.checkpoint_file, options.checkpoint_every, checkpointed_run(model, options)};
+  std::optional<Checkpoint> restart;
+  if (!options.restart_from.empty()) {
+    restart = read_checkpoint(options.restart_from);
+    check_same_run(restart->run, checkpoints.run);
+    checkpoints.restore = &restart->state;
+  }
   RunResult result;
-  SimulationOutput sim = simulate(with_seeds ? *with_seeds : problem, options);
+  SimulationOutput sim = simulate(with_seeds ? *with_seeds : problem, options, &checkpoints);
   result.responses = std::move(sim.responses);
   result.sensitivities = std::move(sim.sensitivities);
   result.summary = sim.summary;

@@ -5,6 +5,7 @@
 // Thread-safety: run() keeps no shared mutable state; several runs may go side by side on
 // different threads. The progress callback is called on the running thread after every step.
 #include <atomic>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -15,6 +16,7 @@
 namespace pfem {
 
 enum class SensitivityMethod { kNone, kDdm, kFdm };
+const char* method_name(SensitivityMethod m);  // "none", "ddm", "fdm"
 
 struct Progress {
   int step = 0;                 // steps completed
@@ -44,6 +46,15 @@ struct RunOptions {
   int threads = 1;                  // threads for element loops, 1..kMaxThreads
   std::function<void(const Progress&)> progress;  // may be empty
   const std::atomic<bool>* cancel = nullptr;      // checked between steps (and Newton iterations)
+  // Checkpoints (engine/analysis/checkpoint.h; not with the FDM, whose runs are 2P + 1): the
+  // state after every checkpoint_every-th step (0: none), and after the last step done when
+  // cancelled, written to checkpoint_file (each replacing the last, atomically).
+  int checkpoint_every = 0;
+  std::filesystem::path checkpoint_file;
+  // Continue from this checkpoint instead of t = 0, bit-identically to a run that was never
+  // stopped; the model and the options above the progress callback must be the checkpointed
+  // run's (else CheckpointError, as for a checkpoint of another engine build).
+  std::filesystem::path restart_from;
 };
 
 enum class RunStatus { kCompleted, kFailed, kCancelled };
@@ -94,7 +105,7 @@ struct RunResult {
 };
 
 // Runs the model. Throws ModelError (engine/io/model_io.h) when the model or the options are
-// invalid; a simulation failure (Newton divergence, a particle leaving the domain) does not
+// invalid, CheckpointError (engine/state/state_archive.h) for a restart_from it cannot continue; a simulation failure (Newton divergence, a particle leaving the domain) does not
 // throw: it returns status kFailed with the step, time and reason and the partial histories.
 RunResult run(const pfem::v1::Model& model, const RunOptions& options);
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "engine/analysis/recorders.h"
+#include "engine/analysis/run_state.h"
 #include "engine/mesh/particle_spacing.h"
 #include "engine/io/model_size.h"
 #include "engine/io/vtk_writer.h"
@@ -130,9 +131,12 @@ int insert_particles(const mesh::FluidMesh& mesh, const Problem& problem, NodeSt
 
 }  // namespace
 
-SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
+SimulationOutput simulate(const Problem& problem, const RunOptions& options, const Checkpointing* checkpoints) {
   const auto start = Clock::now();
-  SimulationOutput out;
+  RunState state;
+  NodeState& nodes = state.nodes;
+  mesh::FluidMesh& mesh = state.mesh;
+  SimulationOutput& out = state.out;
   RunSummary& sum = out.summary;
   sum.dt = problem.dt;
   sum.t_end = problem.t_end;
@@ -140,19 +144,20 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   const int total_steps = static_cast<int>(count_steps(problem.t_end, problem.dt));
   const double last_dt = problem.t_end - (total_steps - 1) * problem.dt;
   const bool short_last = last_dt < problem.dt * (1.0 - 1e-9);
+  const auto time_of = [&](int n) { return short_last && n == total_steps ? problem.t_end : n * problem.dt; };
   for (const auto& r : problem.recorders) out.responses.columns.push_back(r.name);
   const bool ddm = !problem.sensitivity_params.empty();
   for (const auto& r : problem.recorders)
     for (const auto& p : problem.sensitivity_params) out.sensitivities.columns.push_back("d" + r.name + "/d" + p);
 
-  NodeState nodes = problem.nodes;
+  nodes = problem.nodes;
   for (const auto k : nodes.kind) sum.particles += k == mesh::NodeKind::Fluid;
   // Walls and beams are constraints of the triangulation: no triangle spans them.
   auto constraints = problem.wall_segments;
   constraints.insert(constraints.end(), problem.beam_segments.begin(), problem.beam_segments.end());
   mesh::RemeshOptions remesh_options{problem.h, problem.alpha, problem.gx, problem.gy, constraints};
   remesh_options.boundary_alpha = problem.boundary_alpha;
-  std::optional<structure::StructureModel> structure = problem.structure;  // this run's own state
+  if (problem.structure) state.structure.emplace(*problem.structure);  // this run's own state
   StepSettings settings;
   settings.dt = problem.dt;
   settings.tolerance = problem.newton_tolerance;
@@ -165,25 +170,20 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
   settings.walls = constraints;  // beams too: they move little within a step
   settings.slip = problem.wall_slip;
   if (problem.unified_fractional_step) settings.formulation = StepSettings::Formulation::kGlobalBubble;
-  if (structure) settings.structure = {&*structure, problem.structure_nodes, problem.structure_self_weight};
+  if (state.structure) settings.structure = {&*state.structure, problem.structure_nodes, problem.structure_self_weight};
   settings.sensitivity = problem.fluid_seeds;
   settings.geometric_terms = !options.drop_geometric_terms;
-  UnifiedStep step;
+  UnifiedStep& step = state.solver;
 
   const int vtk_every = options.vtk_every.value_or(problem.vtk_every);
   std::unique_ptr<VtkSeries> vtk;
   if (!options.vtk_dir.empty())
     vtk = std::make_unique<VtkSeries>(options.vtk_dir, problem.sensitivity_params, problem.structure_nodes);
-
-  auto t0 = Clock::now();
-  mesh::FluidMesh mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
-  if (!problem.sliding_walls.empty()) {
-    slide_walls(problem, mesh, nodes);
-    mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
-  }
-  sum.remesh_seconds += since(t0);
-  sum.fluid_area_initial = sum.fluid_area_final = fluid_area(mesh, nodes);
-  const structure::StructureModel* model = structure ? &*structure : nullptr;
+  const auto archive_all = [&](StateArchive& a) {
+    archive(a, state);
+    if (vtk) vtk->archive(a);
+  };
+  const structure::StructureModel* model = state.structure ? &*state.structure : nullptr;
   const auto record = [&](double time) {
     out.responses.time.push_back(time);
     out.responses.rows.push_back(sample_recorders(problem, nodes, mesh, model));
@@ -191,21 +191,46 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
     out.sensitivities.time.push_back(time);
     out.sensitivities.rows.push_back(sample_recorder_sensitivities(problem, nodes, mesh, model));
   };
-  record(0.0);
-  if (vtk) vtk->write(0.0, nodes, mesh, model);
 
-  for (int n = 1; n <= total_steps; ++n) {
+  if (checkpoints && checkpoints->restore) {
+    StateArchive a = StateArchive::restoring(*checkpoints->restore);
+    archive_all(a);
+    if (!a.at_end()) throw CheckpointError("checkpoint: its state is longer than this problem's");
+  } else {
+    auto t0 = Clock::now();
+    mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
+    if (!problem.sliding_walls.empty()) {
+      slide_walls(problem, mesh, nodes);
+      mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
+    }
+    sum.remesh_seconds += since(t0);
+    sum.fluid_area_initial = sum.fluid_area_final = fluid_area(mesh, nodes);
+    record(0.0);
+    if (vtk) vtk->write(0.0, nodes, mesh, model);
+  }
+  const int first_step = sum.steps + 1;
+  const double earlier_seconds = sum.wall_seconds;  // of the run before the restart
+  const auto save_checkpoint = [&] {
+    sum.wall_seconds = earlier_seconds + since(start);
+    StateArchive a = StateArchive::saving();
+    archive_all(a);
+    write_checkpoint(checkpoints->file, {checkpoints->run, sum.steps, time_of(sum.steps), a.bytes()});
+  };
+
+  for (int n = first_step; n <= total_steps; ++n) {
     const bool shortened = short_last && n == total_steps;
-    const double time = shortened ? problem.t_end : n * problem.dt;
+    const double time = time_of(n);
     settings.dt = shortened ? last_dt : problem.dt;
     if (options.cancel && options.cancel->load()) {
       sum.status = RunStatus::kCancelled;
       sum.message = "cancelled before step " + std::to_string(n);
+      // Between steps the state is whole: a restart continues from here.
+      if (checkpoints && checkpoints->every > 0 && n > first_step) save_checkpoint();
       break;
     }
     try {
       if (n > 1) {  // the step-1 mesh is the initial one
-        t0 = Clock::now();
+        const auto t0 = Clock::now();
         mesh = remesh_after(problem, mesh, nodes, remesh_options);
         sum.remesh_seconds += since(t0);
       }
@@ -231,6 +256,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
         sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind,
                                                               problem.removal_distance * problem.h);
         sum.inserted_particles += insert_particles(mesh, problem, nodes);
+        if (checkpoints && checkpoints->every > 0 && n % checkpoints->every == 0) save_checkpoint();
       }
       if (options.progress) {
         Progress pr;
@@ -240,7 +266,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
         pr.t_end = problem.t_end;
         pr.newton_iterations = iterations;
         pr.elapsed_seconds = since(start);
-        pr.remaining_seconds = pr.elapsed_seconds / n * (total_steps - n);
+        pr.remaining_seconds = pr.elapsed_seconds / (n - first_step + 1) * (total_steps - n);
         options.progress(pr);
       }
     } catch (const StepCancelled&) {
@@ -265,9 +291,9 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options) {
                   100.0 * sum.fluid_area_max_drift, 100.0 * kAreaDriftWarning);
     sum.warnings.push_back(msg);
   }
-  sum.wall_seconds = since(start);
+  sum.wall_seconds = earlier_seconds + since(start);
   sum.response_seconds = sum.wall_seconds - sum.sensitivity_seconds;
-  return out;
+  return std::move(out);
 }
 
 }  // namespace pfem

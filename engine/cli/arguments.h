@@ -27,6 +27,7 @@ class Arguments {
   // unknown ("-x", "--xyz"), or given more than once if it was taken before.
   void expect_done(std::size_t positionals) const;
   const std::string& positional(std::size_t i) const { return args_.at(i); }
+  std::size_t remaining() const { return args_.size(); }  // arguments not taken yet
 
  private:
   template <class T>

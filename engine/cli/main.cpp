@@ -1,12 +1,16 @@
 // The `pfem` command: run and validate model files (design.md, "Contracts").
 //   pfem run MODEL.json --out DIR [--t-end T] [--dt DT] [--sensitivity none|ddm|fdm]
 //            [--params a,b] [--fdm-eps E] [--vtk-every N] [--vtk] [--threads N] [--progress]
+//            [--checkpoint-every N]
+//   pfem run --restart DIR [MODEL.json] [--out DIR] [--threads N] [--progress] [--checkpoint-every N]
 //   pfem check-gradients MODEL.json [--params a,b] [--t-end T] [--dt DT] [--fdm-eps E]
 //            [--tolerance TOL] [--threads N]
 //   pfem validate MODEL.json     (every error; then warnings and the run's estimated size and time)
 // `pfem run` prints a progress line on stderr when stderr is a terminal (or with --progress);
 // SIGINT or SIGTERM stops it at the end of the step in progress and writes every output with
-// status "cancelled" (a second signal ends it at once).
+// status "cancelled" (a second signal ends it at once). With --checkpoint-every N it writes
+// DIR/checkpoint.pfem after every N-th step and when cancelled; --restart DIR continues from it
+// with the checkpointed run's model and options, bit-identically to a run never stopped.
 // Exit codes: 0 success, 1 simulation failed or cancelled (check-gradients: or a DDM column off
 // the FDM by more than the tolerance), 2 invalid input or usage.
 #include <unistd.h>
@@ -18,10 +22,13 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
+#include <algorithm>
 #include <iostream>
 #include <string>
 #include <vector>
 
+#include "engine/analysis/checkpoint.h"
 #include "engine/analysis/gradient_check.h"
 #include "engine/analysis/run.h"
 #include "engine/cli/arguments.h"
@@ -35,6 +42,8 @@ namespace {
 const char* kUsage =
     "usage: pfem run MODEL.json --out DIR [--t-end T] [--dt DT] [--sensitivity none|ddm|fdm]\n"
     "                [--params a,b] [--fdm-eps E] [--vtk] [--vtk-every N] [--threads N] [--progress]\n"
+    "                [--checkpoint-every N]\n"
+    "       pfem run --restart DIR [MODEL.json] [--out DIR] [--threads N] [--progress] [--checkpoint-every N]\n"
     "       pfem check-gradients MODEL.json [--params a,b] [--t-end T] [--dt DT] [--fdm-eps E]\n"
     "                [--tolerance TOL] [--threads N]\n"
     "       pfem validate MODEL.json\n";
@@ -107,6 +116,9 @@ std::string writable_directory(const std::string& dir) {
 int with_exit_codes(const std::function<int()>& body) {
   try {
     return body();
+  } catch (const pfem::CheckpointError& e) {
+    std::cerr << "pfem: " << e.what() << "\n";
+    return 2;
   } catch (const pfem::ModelError& e) {
     for (const auto& err : e.errors()) std::cerr << err.to_string() << "\n";
     return 2;
@@ -137,30 +149,67 @@ int validate(const std::vector<std::string>& args) {
   }
 }
 
+constexpr const char* kCheckpointFile = "checkpoint.pfem";
+
+// The checkpoint of --restart DIR (DIR/checkpoint.pfem, or DIR itself when it is a file).
+std::filesystem::path checkpoint_in(const std::string& dir) {
+  return std::filesystem::is_directory(dir) ? std::filesystem::path(dir) / kCheckpointFile : std::filesystem::path(dir);
+}
+
+// A restart's run options: the checkpointed run's; flags that would change them are refused.
+int restart_options(pfem::cli::Arguments& a, const pfem::Checkpoint& c, pfem::RunOptions& options, bool& vtk) {
+  for (const char* flag : {"--t-end", "--dt", "--sensitivity", "--params", "--fdm-eps", "--vtk-every"})
+    if (a.take_string(flag)) return usage_error(std::string(flag) + ": a restart continues with the checkpointed run's options");
+  if (a.take_flag("--vtk")) return usage_error("--vtk: a restart continues with the checkpointed run's options");
+  options.t_end = c.run.t_end, options.dt = c.run.dt;
+  options.sensitivity = c.run.sensitivity;
+  options.params = c.run.params;
+  options.drop_geometric_terms = c.run.drop_geometric_terms;
+  options.vtk_every = c.run.vtk_every;
+  vtk = c.run.vtk;
+  return 0;
+}
+
 int run(const std::vector<std::string>& args) {
   pfem::cli::Arguments a(args);
   pfem::RunOptions options;
   std::string out_dir;
   bool vtk = false, show_progress = false;
+  std::optional<pfem::Checkpoint> restart;
   try {
     out_dir = a.take_string("--out").value_or("");
-    options.t_end = a.take_double("--t-end");
-    options.dt = a.take_double("--dt");
-    if (auto m = a.take_string("--sensitivity")) {
-      if (*m == "none") options.sensitivity = pfem::SensitivityMethod::kNone;
-      else if (*m == "ddm") options.sensitivity = pfem::SensitivityMethod::kDdm;
-      else if (*m == "fdm") options.sensitivity = pfem::SensitivityMethod::kFdm;
-      else return usage_error("--sensitivity must be none, ddm or fdm");
+    if (auto r = a.take_string("--restart")) {
+      options.restart_from = checkpoint_in(*r);
+      restart = pfem::read_checkpoint(options.restart_from);
+      if (out_dir.empty()) out_dir = options.restart_from.parent_path().string();
+      if (out_dir.empty()) out_dir = ".";
+      if (const int code = restart_options(a, *restart, options, vtk); code != 0) return code;
+    } else {
+      options.t_end = a.take_double("--t-end");
+      options.dt = a.take_double("--dt");
+      if (auto m = a.take_string("--sensitivity")) {
+        if (*m == "none") options.sensitivity = pfem::SensitivityMethod::kNone;
+        else if (*m == "ddm") options.sensitivity = pfem::SensitivityMethod::kDdm;
+        else if (*m == "fdm") options.sensitivity = pfem::SensitivityMethod::kFdm;
+        else return usage_error("--sensitivity must be none, ddm or fdm");
+      }
+      if (auto p = a.take_string("--params")) options.params = pfem::cli::split(*p, ',');
+      if (auto e = a.take_double("--fdm-eps")) options.fdm_eps = *e;
+      if (auto v = a.take_int("--vtk-every")) options.vtk_every = *v, vtk = true;
+      vtk = a.take_flag("--vtk") || vtk;
     }
-    if (auto p = a.take_string("--params")) options.params = pfem::cli::split(*p, ',');
-    if (auto e = a.take_double("--fdm-eps")) options.fdm_eps = *e;
-    if (auto v = a.take_int("--vtk-every")) options.vtk_every = *v, vtk = true;
-    vtk = a.take_flag("--vtk") || vtk;
+    if (auto n = a.take_int("--checkpoint-every")) {
+      if (*n < 1) return usage_error("--checkpoint-every must be >= 1");
+      options.checkpoint_every = *n;
+    }
     if (auto t = a.take_int("--threads")) options.threads = *t;
     show_progress = a.take_flag("--progress");
-    a.expect_done(1);
+    a.expect_done(restart ? std::min<std::size_t>(a.remaining(), 1) : 1);  // a restart's model is optional
   } catch (const std::invalid_argument& e) {
     return usage_error(e.what());
+  } catch (const pfem::CheckpointError& e) {
+    std::cerr << "pfem: --restart: " << e.what() << "\n";
+    return 2;
   }
   if (out_dir.empty()) return usage_error("run needs --out DIR");
   if (!options.params.empty() && options.sensitivity == pfem::SensitivityMethod::kNone)
@@ -170,6 +219,7 @@ int run(const std::vector<std::string>& args) {
     return 2;
   }
   if (vtk) options.vtk_dir = out_dir + "/vtk";
+  if (options.checkpoint_every > 0) options.checkpoint_file = std::filesystem::path(out_dir) / kCheckpointFile;
 
   const bool terminal = isatty(fileno(stderr));
   show_progress = show_progress || terminal;
@@ -185,7 +235,7 @@ int run(const std::vector<std::string>& args) {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   return with_exit_codes([&] {
-    const auto model = pfem::read_model_file(a.positional(0));
+    const auto model = a.remaining() == 0 ? restart->run.model : pfem::read_model_file(a.positional(0));
     const pfem::RunResult result = pfem::run(model, options);
     line.end();
     pfem::write_results(result, out_dir);
@@ -193,6 +243,9 @@ int run(const std::vector<std::string>& args) {
     for (const auto& w : s.warnings) std::cerr << "pfem: warning: " << w << "\n";
     if (s.status != pfem::RunStatus::kCompleted) {
       std::cerr << "pfem: " << s.message << " (partial results in " << out_dir << ")\n";
+      if (s.status == pfem::RunStatus::kCancelled && options.checkpoint_every > 0 &&
+          std::filesystem::exists(options.checkpoint_file))
+        std::cerr << "pfem: continue with: pfem run --restart " << out_dir << "\n";
       return 1;
     }
     std::printf("%d steps, %d particles, up to %d elements, %ld Newton iterations, %.2f s (response %.2f s, sensitivity %.2f s)\n",

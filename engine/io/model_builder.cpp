@@ -32,8 +32,10 @@ double distance_to_segment(double px, double py, const Segment& s) {
 // piece in nodes' segment list.
 // The nodes inside a straight piece that no other wall shares slide along it (mesh::SlidingWallNode);
 // those of a slip wall also have their tangential velocity free (corners and ends: v = 0).
+// wall_pieces[w]: the pieces of wall w.
 std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState& nodes,
-                               std::vector<std::array<std::int32_t, 2>>& pieces, Problem& pb) {
+                               std::vector<std::array<std::int32_t, 2>>& pieces, Problem& pb,
+                               std::vector<std::vector<std::array<std::int32_t, 2>>>& wall_pieces) {
   std::vector<Segment> segments;
   std::vector<mesh::SlidingWallNode> candidates;
   std::vector<std::array<std::int32_t, 2>> candidate_neighbours;
@@ -47,6 +49,7 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
     return nodes.add(x, y, NodeKind::Wall);
   };
   for (const auto& w : model.walls()) {
+    const std::size_t first_piece = pieces.size();
     const int n = w.points_size();
     const int count = w.closed() ? n : n - 1;
     for (int k = 0; k < count; ++k) {
@@ -73,6 +76,7 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
         previous = node;
       }
     }
+    wall_pieces.emplace_back(pieces.begin() + first_piece, pieces.end());
   }
   pb.wall_neighbours.assign(nodes.size(), {});
   pb.wall_slip.assign(nodes.size(), 0);
@@ -86,6 +90,38 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
       if (n >= 0) pb.wall_neighbours[n].push_back(k);
   }
   return segments;
+}
+
+// The pieces of a boundary as the triangulation may hold them: each piece, and where wall or
+// structure nodes lie on it at t = 0 (a beam clamped on the floor, a wall node at a beam's end),
+// its parts between them (the remesher splits a constraint at a node on it and merges coincident
+// nodes into the lowest index). tol: the distance that counts as on it [m].
+std::vector<std::array<std::int32_t, 2>> pieces_as_meshed(const std::vector<std::array<std::int32_t, 2>>& pieces,
+                                                          const NodeState& nodes, double tol) {
+  std::vector<std::array<std::int32_t, 2>> out;
+  for (const auto& [a, b] : pieces) {
+    out.push_back({a, b});
+    const double dx = nodes.x[b] - nodes.x[a], dy = nodes.y[b] - nodes.y[a], len2 = dx * dx + dy * dy;
+    std::vector<std::pair<double, std::int32_t>> on;  // (position along the piece, node)
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      if (nodes.kind[i] == NodeKind::Fluid || nodes.kind[i] == NodeKind::Removed) continue;
+      const double s = ((nodes.x[i] - nodes.x[a]) * dx + (nodes.y[i] - nodes.y[a]) * dy) / len2;
+      const double off = std::abs((nodes.x[i] - nodes.x[a]) * dy - (nodes.y[i] - nodes.y[a]) * dx) / std::sqrt(len2);
+      if (off < tol && s > -tol && s < 1.0 + tol) on.emplace_back(s, static_cast<std::int32_t>(i));
+    }
+    std::sort(on.begin(), on.end());
+    if (on.size() == 2) continue;  // just the ends
+    for (std::size_t j = 1; j < on.size(); ++j) {
+      // Coincident nodes are one vertex: the edge runs from the lowest index of each group.
+      if (on[j].first - on[j - 1].first < tol) continue;
+      std::int32_t from = on[j - 1].second;
+      for (std::size_t i = j - 1; i-- > 0 && on[j - 1].first - on[i].first < tol;) from = std::min(from, on[i].second);
+      std::int32_t to = on[j].second;
+      for (std::size_t i = j + 1; i < on.size() && on[i].first - on[j].first < tol; ++i) to = std::min(to, on[i].second);
+      out.push_back({from, to});
+    }
+  }
+  return out;
 }
 
 bool inside_polygon(const pfem::v1::Polygon& poly, double x, double y, double tol) {
@@ -242,7 +278,15 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
   apply_parameter_overrides(with_values);
   std::vector<std::vector<std::string>> sensitivity_targets;
   sensitivity_seeds(model, sensitivity_params, pb, sensitivity_targets);
-  auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments, pb);
+  std::vector<std::vector<std::array<std::int32_t, 2>>> wall_pieces;
+  auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments, pb, wall_pieces);
+  std::map<std::string, std::vector<std::array<std::int32_t, 2>>> boundary_pieces;  // walls, then beams
+  std::map<std::string, std::array<double, 2>> boundary_origin;
+  for (int w = 0; w < model.walls_size(); ++w) {
+    const auto& first = model.walls(w).points(0);
+    boundary_pieces.emplace(model.walls(w).name(), wall_pieces[w]);
+    boundary_origin.emplace(model.walls(w).name(), std::array<double, 2>{first.x(), first.y()});
+  }
   std::map<std::string, int> structure_node_by_name, element_by_name;
   if (model.has_structure()) {
     StructureBuild sb = build_structure(with_values, sensitivity_targets);
@@ -251,10 +295,15 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
       pb.structure_nodes.push_back(pb.nodes.add(node.x(0), node.x(1), NodeKind::Structure));
     }
     for (const auto& [name, k] : sb.node_index) structure_node_by_name[name] = pb.structure_nodes[k];
-    for (const auto& beam : sb.beam_nodes) {
+    for (std::size_t b = 0; b < sb.beam_nodes.size(); ++b) {
+      const auto& beam = sb.beam_nodes[b];
+      const std::string& name = model.structure().beams(static_cast<int>(b)).name();
+      const auto& base = sb.model.node(beam.front());
+      boundary_origin.emplace(name, std::array<double, 2>{base.x(0), base.x(1)});
       for (std::size_t j = 1; j < beam.size(); ++j) {
         const int from = beam[j - 1], to = beam[j];
         pb.beam_segments.push_back({pb.structure_nodes[from], pb.structure_nodes[to]});
+        boundary_pieces[name].push_back(pb.beam_segments.back());
         const auto& na = sb.model.node(from);
         const auto& nb = sb.model.node(to);
         segments.push_back({na.x(0), na.x(1), nb.x(0), nb.x(1)});  // particles keep clear of beams too
@@ -282,13 +331,19 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
   if (!errors.empty()) throw ModelError(std::move(errors));
 
   for (const auto& r : model.recorders()) {
-    RecorderSpec spec{r.name(), r.quantity(), -1};
+    RecorderSpec spec;
+    spec.name = r.name(), spec.quantity = r.quantity();
     if (r.has_point() && is_point_quantity(r.quantity())) spec.x = r.point().x(), spec.y = r.point().y();
     else if (r.has_point()) spec.node = nearest_node(pb.nodes, r.point().x(), r.point().y());
     if (r.has_node()) spec.node = structure_node_by_name.at(r.node());  // validated above
     if (r.has_element()) {
       spec.element = element_by_name.at(r.element());
       spec.component = r.component(), spec.section_point = r.section_point(), spec.fiber = r.fiber();
+    }
+    if (r.has_boundary()) {  // validated: names a wall or a beam
+      spec.pieces = pieces_as_meshed(boundary_pieces.at(r.boundary()), pb.nodes, 1e-6 * pb.h);
+      const auto origin = boundary_origin.at(r.boundary());
+      spec.x = r.has_about() ? r.about().x() : origin[0], spec.y = r.has_about() ? r.about().y() : origin[1];
     }
     pb.recorders.push_back(spec);
   }

@@ -28,6 +28,10 @@ const std::set<std::string>& point_quantities() {
   static const std::set<std::string> q{"pressure", "wave_gauge"};
   return q;
 }
+const std::set<std::string>& boundary_quantities() {
+  static const std::set<std::string> q{"force_x", "force_y", "moment"};
+  return q;
+}
 const std::set<std::string>& global_quantities() {
   static const std::set<std::string> q{"fluid_area", "front_x", "front_y", "max_speed"};
   return q;
@@ -328,11 +332,30 @@ void ModelChecker::check_recorders() {
     } else if (is_point_quantity(r.quantity())) {
       if (r.has_point()) check_point(r, path);
       else error(path, "quantity '" + r.quantity() + "' needs a target: point");
+    } else if (boundary_quantities().count(r.quantity())) {
+      check_boundary_recorder(r, path);
     } else if (!is_global_quantity(r.quantity())) {
       error(path + ".quantity", "unknown quantity '" + r.quantity() + "'; expected one of " +
                                     listed(nodal_quantities()) + ", " + listed(element_quantities()) +
-                                    ", " + listed(point_quantities()) + ", " + listed(global_quantities()));
+                                    ", " + listed(point_quantities()) + ", " + listed(boundary_quantities()) +
+                                    ", " + listed(global_quantities()));
     }
+    if (r.has_boundary() && !boundary_quantities().count(r.quantity()))
+      error(path + ".boundary", "only for the quantities " + listed(boundary_quantities()));
+    if (r.has_about() && r.quantity() != "moment") error(path + ".about", "only for the quantity moment");
+  }
+}
+
+void ModelChecker::check_boundary_recorder(const pfem::v1::Recorder& r, const std::string& path) {
+  if (!r.has_boundary()) return error(path, "quantity '" + r.quantity() + "' needs a target: boundary (a wall or beam name)");
+  int matches = 0;
+  for (const auto& w : model_.walls()) matches += w.name() == r.boundary();
+  for (const auto& b : model_.structure().beams()) matches += b.name() == r.boundary();
+  if (matches == 0) error(path + ".boundary", "no wall or beam is named " + quoted(r.boundary()));
+  else if (matches > 1) error(path + ".boundary", quoted(r.boundary()) + " names more than one wall or beam");
+  if (r.has_about()) {
+    finite(path + ".about.x", r.about().x());
+    finite(path + ".about.y", r.about().y());
   }
 }
 

@@ -84,6 +84,7 @@ class ModelChecker {
   int beam_of_element(const std::string& name) const;
   void check_element_recorder(const pfem::v1::Recorder& r, const std::string& path);
   void check_point(const pfem::v1::Recorder& r, const std::string& path);
+  void check_boundary_recorder(const pfem::v1::Recorder& r, const std::string& path);
   void check_target(const std::string& target, const std::string& path);
   void check_target_value(const std::string& target, double value, const std::string& path);
 

@@ -127,6 +127,8 @@ void VtkSeries::write(double time, const NodeState& nodes, const mesh::FluidMesh
   add(beam_files_, "beams", time, beams);
 }
 
+void VtkSeries::archive(StateArchive& a) { a(fluid_files_), a(beam_files_); }
+
 void VtkSeries::write_fluid(const std::filesystem::path& file, const NodeState& nodes,
                             const mesh::FluidMesh& mesh) const {
   std::vector<int> index, point(nodes.size(), -1);  // point number of each node written

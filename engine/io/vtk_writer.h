@@ -18,6 +18,7 @@
 
 #include "engine/mesh/remesher.h"
 #include "engine/solve/node_state.h"
+#include "engine/state/state_archive.h"
 #include "engine/structure/structure_model.h"
 
 namespace pfem {
@@ -30,6 +31,9 @@ class VtkSeries {
             std::string stem = "pfem");
   void write(double time, const NodeState& nodes, const mesh::FluidMesh& mesh,
              const structure::StructureModel* structure);
+  // Saves or restores the files written so far (a restarted run's .pvd lists them too, and
+  // its files are numbered on from them).
+  void archive(StateArchive& a);
 
  private:
   using Collection = std::vector<std::pair<double, std::string>>;

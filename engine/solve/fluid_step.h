@@ -121,6 +121,10 @@ class UnifiedStep {
                      const std::atomic<bool>* cancel = nullptr);
   // The report of the last call, also when it threw (the work of a failed attempt).
   const StepReport& last_report() const { return report_; }
+  // Saves or restores what one step hands to the next (the bubble velocities and their
+  // sensitivities by triangle, the sensitivity solver's choice and its LU's symbolic analysis)
+  // for a checkpoint; between steps only.
+  void archive(StateArchive& a);
 
  private:
   // Per element, from a condensed factorisation: the bubble block inverse and
@@ -246,7 +250,9 @@ class UnifiedStep {
   // The exact Jacobian's pieces.
   std::vector<fluid::GeometricDerivatives> geometric_;
   std::vector<BubbleCondensation> jacobian_bubbles_;
-  SparseMatrix jacobian_, lu_pattern_;  // lu_pattern_: the Jacobian last factorised
+  // lu_analyzed_: the Jacobian of the LU's symbolic analysis (UMFPACK's ordering depends on its
+  // values too: a restart redoes the analysis on it).
+  SparseMatrix jacobian_, lu_analyzed_;
   int lu_steps_left_ = 0;  // steps that take the LU without trying GMRES first
   LuSolver jacobian_solver_;
 };

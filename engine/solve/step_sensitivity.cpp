@@ -48,12 +48,14 @@ void UnifiedStep::factorize_jacobian() {
   // The symbolic analysis is reused while the pattern stays (a mesh whose connectivity and free
   // surface did not change since the last factorisation, as in water at rest).
   const auto same = [](const int* a, const int* b, Eigen::Index n) { return std::equal(a, a + n, b); };
-  const bool same_pattern = lu_pattern_.rows() == jacobian_.rows() && lu_pattern_.nonZeros() == jacobian_.nonZeros() &&
-                            same(lu_pattern_.outerIndexPtr(), jacobian_.outerIndexPtr(), jacobian_.cols() + 1) &&
-                            same(lu_pattern_.innerIndexPtr(), jacobian_.innerIndexPtr(), jacobian_.nonZeros());
-  if (!same_pattern) jacobian_solver_.analyze(jacobian_);
+  const bool same_pattern = lu_analyzed_.rows() == jacobian_.rows() && lu_analyzed_.nonZeros() == jacobian_.nonZeros() &&
+                            same(lu_analyzed_.outerIndexPtr(), jacobian_.outerIndexPtr(), jacobian_.cols() + 1) &&
+                            same(lu_analyzed_.innerIndexPtr(), jacobian_.innerIndexPtr(), jacobian_.nonZeros());
+  if (!same_pattern) {
+    jacobian_solver_.analyze(jacobian_);
+    lu_analyzed_ = jacobian_;
+  }
   jacobian_solver_.factorize(jacobian_);
-  lu_pattern_ = jacobian_;
 }
 
 void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {

@@ -101,4 +101,12 @@ void BeamColumn2d::set_displacement_sensitivity(int k, const Vec6& du) {
   set_basic_deformation_sensitivity(k, dv);
 }
 
+void BeamColumn2d::archive(StateArchive& a) {
+  a(committed_u_), a(trial_u_), a(q_), a(kb_), a(force_), a(tangent_);
+  a.expect(basic_force_sens_.size(), "parameters of a beam");
+  for (auto& s : basic_force_sens_) a(s);
+  transf_->archive(a);
+  archive_basic(a);
+}
+
 }  // namespace pfem::structure

@@ -44,6 +44,7 @@ class BeamColumn2d : public Element {
   bool has_lumped_mass() const override { return options_.mass == MassKind::kLumped; }
   void commit() override;
   void revert_to_last_commit() override;
+  void archive(StateArchive& a) override;
 
   void set_num_parameters(int P) override;
   Vec6 conditional_force_sensitivity(int k) const override;
@@ -73,6 +74,8 @@ class BeamColumn2d : public Element {
   virtual Mat3 initial_basic_stiffness() const = 0;
   virtual void commit_basic() = 0;
   virtual void revert_basic() = 0;
+  // The basic system's own state (its sections') for archive().
+  virtual void archive_basic(StateArchive& a) = 0;
   // DDM of the basic system: dq/dtheta_k at fixed v, dkb0/dtheta_k, dA/dtheta_k, and the total
   // dv/dtheta_k at the converged trial state (sets the sections' history sensitivities).
   virtual Vec3 conditional_basic_force_sensitivity(int k) const = 0;

@@ -106,4 +106,16 @@ std::unique_ptr<UniaxialMaterial> BilinearMaterial::clone() const {
   return std::make_unique<BilinearMaterial>(*this);
 }
 
+void BilinearMaterial::archive(StateArchive& a) {
+  UniaxialMaterial::archive(a);
+  const auto history = [&](BilinearHistory& h) { a(h.plastic_strain), a(h.back_stress); };
+  history(committed_);
+  a(committed_strain_), a(strain_);
+  a(trial_.stress), a(trial_.tangent), a(trial_.plastic);
+  history(trial_.history);
+  a.expect(committed_sens_.size(), "parameters of a material");
+  for (auto& h : committed_sens_) history(h);
+  for (auto& h : trial_sens_) history(h);
+}
+
 }  // namespace pfem::structure

@@ -68,6 +68,7 @@ class BilinearMaterial final : public UniaxialMaterial {
   void commit() override;
   void revert_to_last_commit() override;
   std::unique_ptr<UniaxialMaterial> clone() const override;
+  void archive(StateArchive& a) override;
 
   const BilinearParameters& parameters() const { return params_; }
   const BilinearHistory& committed_history() const { return committed_; }

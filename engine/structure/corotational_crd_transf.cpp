@@ -55,4 +55,6 @@ std::unique_ptr<CrdTransf2d> CorotationalCrdTransf2d::clone() const {
   return std::make_unique<CorotationalCrdTransf2d>(*this);
 }
 
+void CorotationalCrdTransf2d::archive(StateArchive& a) { a(Ln_), a(alpha_), a(r_), a(z_), a(B_), a(v_); }
+
 }  // namespace pfem::structure

@@ -25,6 +25,7 @@ class CorotationalCrdTransf2d final : public CrdTransf2d {
   Vec6 global_force(const Vec3& q) const override;
   Mat6 global_stiffness(const Mat3& kb, const Vec3& q) const override;
   std::unique_ptr<CrdTransf2d> clone() const override;
+  void archive(StateArchive& a) override;
 
   double current_length() const { return Ln_; }
   double chord_rotation() const { return alpha_; }

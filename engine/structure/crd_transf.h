@@ -9,6 +9,8 @@
 // so that K_global is the consistent tangent of F_global in both cases.
 #include <memory>
 
+#include "engine/state/state_archive.h"
+
 #include "engine/structure/types.h"
 
 namespace pfem::structure {
@@ -31,6 +33,8 @@ class CrdTransf2d {
   virtual Vec6 global_force(const Vec3& q) const = 0;
   virtual Mat6 global_stiffness(const Mat3& kb, const Vec3& q) const = 0;
   virtual std::unique_ptr<CrdTransf2d> clone() const = 0;
+  // Saves or restores the state of the last update() for a checkpoint.
+  virtual void archive(StateArchive& a) = 0;
 
   double initial_length() const { return L0_; }
   double initial_cos() const { return c0_; }

@@ -104,4 +104,9 @@ std::unique_ptr<Element> DispBeamColumn2d::clone() const {
   return std::unique_ptr<Element>(new DispBeamColumn2d(*this));
 }
 
+void DispBeamColumn2d::archive_basic(StateArchive& a) {
+  a.expect(sections_.size(), "integration points of a beam");
+  for (auto& s : sections_) s->archive(a);
+}
+
 }  // namespace pfem::structure

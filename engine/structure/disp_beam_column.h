@@ -35,6 +35,7 @@ class DispBeamColumn2d final : public BeamColumn2d {
   Mat3 initial_basic_stiffness() const override;
   void commit_basic() override;
   void revert_basic() override;
+  void archive_basic(StateArchive& a) override;
   Vec3 conditional_basic_force_sensitivity(int k) const override;
   Mat3 initial_basic_stiffness_sensitivity(int k) const override;
   double section_area_sensitivity(int k) const override {

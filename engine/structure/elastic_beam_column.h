@@ -24,6 +24,7 @@ class ElasticBeamColumn2d final : public BeamColumn2d {
   Mat3 initial_basic_stiffness() const override { return kb_elastic_; }
   void commit_basic() override {}
   void revert_basic() override {}
+  void archive_basic(StateArchive&) override {}  // no state of its own
   Vec3 conditional_basic_force_sensitivity(int k) const override;
   Mat3 initial_basic_stiffness_sensitivity(int k) const override;
   double section_area_sensitivity(int k) const override { return seeds_[k].A; }

@@ -10,4 +10,9 @@ std::unique_ptr<UniaxialMaterial> ElasticMaterial::clone() const {
   return std::make_unique<ElasticMaterial>(*this);
 }
 
+void ElasticMaterial::archive(StateArchive& a) {
+  UniaxialMaterial::archive(a);
+  a(strain_), a(committed_strain_);
+}
+
 }  // namespace pfem::structure

@@ -19,6 +19,7 @@ class ElasticMaterial final : public UniaxialMaterial {
   void commit() override { committed_strain_ = strain_; }
   void revert_to_last_commit() override { strain_ = committed_strain_; }
   std::unique_ptr<UniaxialMaterial> clone() const override;
+  void archive(StateArchive& a) override;
 
   double youngs_modulus() const { return E_; }
 

@@ -36,4 +36,6 @@ std::unique_ptr<Section> ElasticSection::clone() const {
   return std::make_unique<ElasticSection>(*this);
 }
 
+void ElasticSection::archive(StateArchive& a) { a(e_), a(s_), a(committed_e_); }
+
 }  // namespace pfem::structure

@@ -32,6 +32,7 @@ class ElasticSection final : public Section {
   void commit() override { committed_e_ = e_; }
   void revert_to_last_commit() override { set_trial_deformation(committed_e_); }
   std::unique_ptr<Section> clone() const override;
+  void archive(StateArchive& a) override;
 
   const ElasticSectionProperties& properties() const { return props_; }
 

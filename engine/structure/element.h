@@ -13,6 +13,8 @@
 #include <array>
 #include <memory>
 
+#include "engine/state/state_archive.h"
+
 #include "engine/structure/types.h"
 
 namespace pfem::structure {
@@ -32,6 +34,9 @@ class Element {
   virtual void commit() = 0;
   virtual void revert_to_last_commit() = 0;
   virtual std::unique_ptr<Element> clone() const = 0;
+  // Saves or restores the mutable state (trial and committed, history and sensitivities) for a
+  // checkpoint.
+  virtual void archive(StateArchive& a) = 0;
 
   // --- DDM ---
   // Sizes the sensitivity storage (history sensitivities 0; seeds kept).

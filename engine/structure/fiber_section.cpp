@@ -135,4 +135,10 @@ std::unique_ptr<Section> FiberSection::clone() const {
   return std::make_unique<FiberSection>(*this);
 }
 
+void FiberSection::archive(StateArchive& a) {
+  a(e_), a(committed_e_), a(s_), a(k_);
+  a.expect(fibers_.size(), "fibers of a section");
+  for (auto& f : fibers_) f->archive(a);
+}
+
 }  // namespace pfem::structure

@@ -45,6 +45,7 @@ class FiberSection final : public Section {
   void commit() override;
   void revert_to_last_commit() override;
   std::unique_ptr<Section> clone() const override;
+  void archive(StateArchive& a) override;
 
   const FiberSectionGeometry& geometry() const { return geometry_; }
   int num_fibers() const { return static_cast<int>(fibers_.size()); }

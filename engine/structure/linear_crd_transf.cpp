@@ -13,4 +13,6 @@ std::unique_ptr<CrdTransf2d> LinearCrdTransf2d::clone() const {
   return std::make_unique<LinearCrdTransf2d>(*this);
 }
 
+void LinearCrdTransf2d::archive(StateArchive& a) { a(v_); }
+
 }  // namespace pfem::structure

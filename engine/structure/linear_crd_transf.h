@@ -15,6 +15,7 @@ class LinearCrdTransf2d final : public CrdTransf2d {
   Vec6 global_force(const Vec3& q) const override { return B_.transpose() * q; }
   Mat6 global_stiffness(const Mat3& kb, const Vec3& q) const override;
   std::unique_ptr<CrdTransf2d> clone() const override;
+  void archive(StateArchive& a) override;
 
  private:
   Mat36 B_;

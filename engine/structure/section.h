@@ -5,6 +5,8 @@
 // and the same DDM protocol (uniaxial_material.h) with section deformations for strains.
 #include <memory>
 
+#include "engine/state/state_archive.h"
+
 #include "engine/structure/types.h"
 
 namespace pfem::structure {
@@ -23,6 +25,8 @@ class Section {
   virtual void commit() = 0;
   virtual void revert_to_last_commit() = 0;
   virtual std::unique_ptr<Section> clone() const = 0;
+  // Saves or restores the mutable state (its fibers' included) for a checkpoint.
+  virtual void archive(StateArchive& a) = 0;
 
   // --- DDM, parameters k = 0..P-1 ---
   // Sizes the sensitivity storage (history sensitivities 0; seeds kept).

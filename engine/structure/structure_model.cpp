@@ -270,4 +270,12 @@ void StructureModel::set_displacement_sensitivity(int k, const Eigen::VectorXd& 
   for (auto& e : elements_) e->set_displacement_sensitivity(k, gather(du, *e));
 }
 
+void StructureModel::archive(StateArchive& a) {
+  a.expect(static_cast<std::uint64_t>(num_dofs()), "structure dofs");
+  a.expect(elements_.size(), "structure elements");
+  a.expect(static_cast<std::uint64_t>(num_parameters_), "structure parameters");
+  a(u_trial_), a(u_committed_);
+  for (auto& e : elements_) e->archive(a);
+}
+
 }  // namespace pfem::structure

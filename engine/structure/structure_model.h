@@ -79,6 +79,9 @@ class StructureModel {
   const Eigen::VectorXd& committed_displacement() const { return u_committed_; }
   void commit();
   void revert_to_last_commit();
+  // Saves or restores every mutable state (displacements, every element's trial and committed
+  // state, history and sensitivities) for a checkpoint.
+  void archive(StateArchive& a);
 
   // --- at the trial state ---
   Eigen::VectorXd resisting_force() const;

@@ -9,4 +9,9 @@ void UniaxialMaterial::set_strain_sensitivity(int k, double dstrain) {
   update_history_sensitivity(k, dstrain);
 }
 
+void UniaxialMaterial::archive(StateArchive& a) {
+  a.expect(total_.size(), "parameters of a material");
+  for (auto& t : total_) a(t.strain), a(t.stress);
+}
+
 }  // namespace pfem::structure

@@ -15,6 +15,8 @@
 #include <memory>
 #include <vector>
 
+#include "engine/state/state_archive.h"
+
 namespace pfem::structure {
 
 class UniaxialMaterial {
@@ -32,6 +34,9 @@ class UniaxialMaterial {
   virtual void commit() = 0;
   virtual void revert_to_last_commit() = 0;
   virtual std::unique_ptr<UniaxialMaterial> clone() const = 0;
+  // Saves or restores the mutable state (trial and committed, with the sensitivities) for a
+  // checkpoint; derived classes add theirs to this one's.
+  virtual void archive(StateArchive& a);
 
   // --- DDM ---
   // Sizes the sensitivity storage for P parameters; history sensitivities restart at 0.

@@ -155,12 +155,19 @@ TEST(DdmGradient, IterativeAndDirectSensitivitySolvesAgree) {
 // unknown and slide to the contact line; the wave gauge (a free edge's crossing with a fixed
 // vertical line) and the pressure at a fixed point (interpolated in the triangle that holds it)
 // are differentiated on dual numbers through the nodes' sensitivities. DDM against central FDM.
-TEST(DdmGradient, SlipWallTankWithAWaveGaugeAndAPressurePoint) {
+// The free surface 0.1 + 0.005 cos(pi x / 0.2) of a 0.2 m tank, from x = 0.2 to 0, as polygon
+// points (each after a comma).
+std::string tank_surface() {
   std::string points;
   for (int i = 0; i <= 20; ++i) {
     const double x = 0.2 - 0.01 * i;
     points += R"(, {"x": )" + std::to_string(x) + R"(, "y": )" + std::to_string(0.1 + 0.005 * std::cos(M_PI * x / 0.2)) + "}";
   }
+  return points;
+}
+
+TEST(DdmGradient, SlipWallTankWithAWaveGaugeAndAPressurePoint) {
+  const std::string points = tank_surface();
   const auto model = parse_model_json(R"({
     "name": "slip-tank", "fluid": {"rho": 1000.0, "mu": 0.001, "kappa": 2.15e9}, "mesh": {"h": 0.01},
     "fluid_regions": [{"polygon": {"points": [{"x": 0, "y": 0}, {"x": 0.2, "y": 0})" + points + R"(]}}],
@@ -181,6 +188,46 @@ TEST(DdmGradient, SlipWallTankWithAWaveGaugeAndAPressurePoint) {
     EXPECT_LE(r.ddm, 1e-3) << r.recorder << "/" << r.parameter;
   }
   EXPECT_GE(checked, 4);  // at least the two pressures w.r.t. rho_f and mu
+}
+
+// The fluid's resultant force and moment on a wall and on a beam (traction integrals along the
+// edges on them): their DDM sensitivities against central FDM, in a slip-wall tank sloshing
+// around a flexible post.
+TEST(DdmGradient, ForceAndMomentOnAWallAndABeam) {
+  const std::string points = tank_surface();
+  const auto model = parse_model_json(R"({
+    "name": "slip-tank-forces", "thickness": 0.05, "fluid": {"rho": 1000.0, "mu": 0.001, "kappa": 2.15e9},
+    "mesh": {"h": 0.01},
+    "fluid_regions": [{"polygon": {"points": [{"x": 0, "y": 0}, {"x": 0.2, "y": 0})" + points + R"(]}}],
+    "walls": [{"name": "tank", "points": [{"x": 0, "y": 0.2}, {"x": 0, "y": 0}, {"x": 0.2, "y": 0}, {"x": 0.2, "y": 0.2}], "slip": true}],
+    "structure": {
+      "nodes": [{"name": "base", "x": 0.055, "y": 0.0, "support": {"ux": true, "uy": true, "rz": true}}, {"name": "tip", "x": 0.055, "y": 0.06}],
+      "materials": [{"name": "m", "elastic": {"e": 5e5}}],
+      "sections": [{"name": "s", "fiber_rectangle": {"width": 0.05, "depth": 0.006, "fibers": 6, "material": "m"}}],
+      "beams": [{"name": "post", "from_node": "base", "to_node": "tip", "elements": 6, "element_type": "elastic",
+                 "section": "s", "transformation": "corotational", "rho": 1200.0}]
+    },
+    "analysis": {"dt": 0.004, "t_end": 0.2},
+    "recorders": [{"name": "tank_fx", "quantity": "force_x", "boundary": "tank"},
+                  {"name": "tank_m", "quantity": "moment", "boundary": "tank", "about": {"x": 0.1, "y": 0.0}},
+                  {"name": "post_fx", "quantity": "force_x", "boundary": "post"},
+                  {"name": "post_fy", "quantity": "force_y", "boundary": "post"},
+                  {"name": "post_m", "quantity": "moment", "boundary": "post"}],
+    "parameters": [{"name": "rho_f", "targets": ["fluid.rho"]}, {"name": "mu", "targets": ["fluid.mu"]},
+                   {"name": "E", "targets": ["material.m.e"]}, {"name": "t", "targets": ["thickness"]}]
+  })");
+  const GradientCheck c = check(model, 0.2, {"rho_f", "mu", "E", "t"});
+  int checked = 0;
+  for (const auto& r : c.rows) {
+    if (r.negligible) continue;
+    ++checked;
+    EXPECT_GT(r.max_fdm, 0.0) << r.recorder << "/" << r.parameter;
+    EXPECT_LE(r.ddm, 1e-3) << r.recorder << "/" << r.parameter;
+    if (r.recorder.rfind("tank", 0) == 0) {
+      EXPECT_LE(r.ddm, 1e-4) << r.recorder << "/" << r.parameter;
+    }
+  }
+  EXPECT_GE(checked, 16);
 }
 
 }  // namespace

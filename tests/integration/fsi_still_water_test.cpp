@@ -36,7 +36,10 @@ std::string still_water_model() {
     "analysis": {"dt": 0.001, "t_end": 0.3},
     "recorders": [{"name": "tip_ux", "quantity": "ux", "node": "tip"},
                   {"name": "base_p", "quantity": "p", "node": "beam/1"},
-                  {"name": "base_moment", "quantity": "basic_force", "element": "beam/1", "component": 1}]
+                  {"name": "base_moment", "quantity": "basic_force", "element": "beam/1", "component": 1},
+                  {"name": "water_fx", "quantity": "force_x", "boundary": "beam"},
+                  {"name": "water_fy", "quantity": "force_y", "boundary": "beam"},
+                  {"name": "water_moment", "quantity": "moment", "boundary": "beam"}]
   })";
 }
 
@@ -57,6 +60,14 @@ TEST(FsiStillWater, CantileverSettlesToTheHydrostaticDeflection) {
   const double m_expected = q0 * kL * kL / 6.0;
   std::printf("base moment %.6e N m, q0 L^2/6 = %.6e N m\n", last[2], m_expected);
   EXPECT_NEAR(std::abs(last[2]), m_expected, 0.03 * m_expected);
+  // The water's own resultant on the beam (the traction integrated along it): the load q0 L / 2,
+  // hardly a vertical part, its moment about the base clockwise; in equilibrium with the beam's section.
+  std::printf("water on the beam: Fx %.6e N (q0 L/2 = %.6e), Fy %.2e N, M %.6e N m\n", last[3], q0 * kL / 2.0,
+              last[4], last[5]);
+  EXPECT_NEAR(last[3], q0 * kL / 2.0, 0.01 * q0 * kL / 2.0);
+  EXPECT_LT(std::abs(last[4]), 5e-3 * last[3]);  // the bent beam's slope (~1e-3) tilts the load
+  EXPECT_NEAR(-last[5], m_expected, 0.01 * m_expected);
+  EXPECT_NEAR(-last[5], std::abs(last[2]), 0.01 * m_expected);
 }
 
 // A horizontal cantilever out of a wall, clear of the water (a pool far away), with a tip mass:
@@ -125,7 +136,7 @@ TEST(FsiStillWater, ASubmergedBeamOnTheFloorFeelsNoNetForce) {
       "fluid": {"rho": 1000.0, "mu": 0.01, "kappa": 2.15e9},
       "mesh": {"h": 0.01},
       "fluid_regions": [{"rectangle": {"min": {"x": 0.0, "y": 0.0}, "max": {"x": 0.3, "y": 0.2}}}],
-      "walls": [{"points": [{"x": 0.0, "y": 0.0}, {"x": 0.3, "y": 0.0}, {"x": 0.3, "y": 0.3}, {"x": 0.0, "y": 0.3}], "closed": true}],
+      "walls": [{"name": "box", "points": [{"x": 0.0, "y": 0.0}, {"x": 0.3, "y": 0.0}, {"x": 0.3, "y": 0.3}, {"x": 0.0, "y": 0.3}], "closed": true}],
       "structure": {
         "nodes": [{"name": "base", "x": 0.105, "y": 0.0, "support": {"ux": true, "uy": true, "rz": true}}, )" + tip + R"(],
         "sections": [{"name": "es", "elastic": {"e": 1e7, "area": 1.44e-4, "inertia": 1.728e-9}}],
@@ -135,7 +146,10 @@ TEST(FsiStillWater, ASubmergedBeamOnTheFloorFeelsNoNetForce) {
       "analysis": {"dt": 0.002, "t_end": 0.1},
       "recorders": [{"name": "axial", "quantity": "basic_force", "element": "b/1", "component": 0},
                     {"name": "moment", "quantity": "basic_force", "element": "b/1", "component": 1},
-                    {"name": "fluid_area", "quantity": "fluid_area"}]
+                    {"name": "fluid_area", "quantity": "fluid_area"},
+                    {"name": "water_fx", "quantity": "force_x", "boundary": "b"},
+                    {"name": "water_m", "quantity": "moment", "boundary": "b"},
+                    {"name": "floor_fy", "quantity": "force_y", "boundary": "box"}]
     })");
     const RunResult r = run(model, RunOptions{});
     ASSERT_EQ(r.summary.status, RunStatus::kCompleted) << r.summary.message;
@@ -143,6 +157,11 @@ TEST(FsiStillWater, ASubmergedBeamOnTheFloorFeelsNoNetForce) {
     EXPECT_LT(std::abs(last[0]), 1e-5);  // N (the weight of the water over it: ~1 N)
     EXPECT_LT(std::abs(last[1]), 1e-6);  // N m
     EXPECT_NEAR(last[2], 0.3 * 0.2, 1e-6 * 0.06);  // the box's water, corners included (rho g h / kappa: 5e-7)
+    // The water presses on both faces of the beam alike; the box carries its weight.
+    EXPECT_LT(std::abs(last[3]), 1e-5);
+    EXPECT_LT(std::abs(last[4]), 1e-6);
+    const double weight = kRho * kG * 0.3 * 0.2 * 0.012;
+    EXPECT_NEAR(-last[5], weight, 1e-4 * weight);
   }
 }
 

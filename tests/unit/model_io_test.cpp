@@ -176,6 +176,24 @@ TEST(ModelValidation, UnknownQuantity) {
   expect_single_error(validate_model(m), path, "unknown quantity 'vorticity'");
 }
 
+// A force or moment recorder names one wall or beam; `about` belongs to moments only.
+TEST(ModelValidation, BoundaryRecorders) {
+  auto m = valid_model();
+  auto* r = m.add_recorders();
+  r->set_name("gate_fx");
+  r->set_quantity("force_x");
+  const std::string path = "recorders[" + std::to_string(m.recorders_size() - 1) + "]";
+  expect_single_error(validate_model(m), path, "quantity 'force_x' needs a target: boundary (a wall or beam name)");
+  r->set_boundary("gate");
+  expect_single_error(validate_model(m), path + ".boundary", "no wall or beam is named 'gate'");
+  m.mutable_walls(0)->set_name("gate");
+  EXPECT_TRUE(validate_model(m).empty()) << describe(validate_model(m));
+  r->mutable_about()->set_x(0.0);
+  expect_single_error(validate_model(m), path + ".about", "only for the quantity moment");
+  r->set_quantity("moment");
+  EXPECT_TRUE(validate_model(m).empty()) << describe(validate_model(m));
+}
+
 TEST(ModelValidation, UnknownParameterTarget) {
   auto m = valid_model();
   auto* p = m.add_parameters();

@@ -20,6 +20,7 @@
 #include "engine/io/model_io.h"
 #include "engine/io/model_warnings.h"
 #include "engine/io/results_io.h"
+#include "engine/state/state_archive.h"
 
 namespace py = pybind11;
 
@@ -79,8 +80,12 @@ py::dict validate(const std::string& json) {
 // {"errors"} for invalid input, else {"responses", "sensitivities", "summary_json", "interrupted"}.
 py::dict run(const std::string& json, const std::string& sensitivity, const std::vector<std::string>& params,
              std::optional<double> t_end, std::optional<double> dt, int threads, std::optional<double> fdm_eps,
-             const std::string& vtk_dir, py::object progress) {
+             const std::string& vtk_dir, py::object progress, int checkpoint_every,
+             const std::string& checkpoint_file, const std::string& restart_from) {
   pfem::RunOptions options;
+  options.checkpoint_every = checkpoint_every;
+  options.checkpoint_file = checkpoint_file;
+  options.restart_from = restart_from;
   options.sensitivity = method(sensitivity);
   options.params = params;
   options.t_end = t_end;
@@ -139,5 +144,7 @@ PYBIND11_MODULE(_engine, m) {
   m.def("validate", &validate, py::arg("json"));
   m.def("run", &run, py::arg("json"), py::arg("sensitivity") = "none", py::arg("params") = std::vector<std::string>{},
         py::arg("t_end") = std::nullopt, py::arg("dt") = std::nullopt, py::arg("threads") = 1,
-        py::arg("fdm_eps") = std::nullopt, py::arg("vtk_dir") = "", py::arg("progress") = py::none());
+        py::arg("fdm_eps") = std::nullopt, py::arg("vtk_dir") = "", py::arg("progress") = py::none(),
+        py::arg("checkpoint_every") = 0, py::arg("checkpoint_file") = "", py::arg("restart_from") = "");
+  py::register_exception<pfem::CheckpointError>(m, "CheckpointError", PyExc_ValueError);
 }

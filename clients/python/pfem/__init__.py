@@ -32,7 +32,11 @@ from pfem_client.results import Result, from_columns, read_result_dir  # noqa: E
 
 from . import _engine  # noqa: E402
 
-__all__ = ["Model", "ModelError", "Result", "RunInterrupted", "check", "load_model", "plot_histories",
+# A checkpoint run() cannot continue (another model, options or engine build; damaged).
+CheckpointError = _engine.CheckpointError
+
+__all__ = ["CheckpointError", "Model", "ModelError", "Result", "RunInterrupted", "check", "load_model",
+           "plot_histories",
            "read_result_dir", "run", "validate"]
 
 
@@ -108,16 +112,22 @@ def check(model: ModelLike) -> Dict[str, Any]:
 def run(model: ModelLike, *, sensitivity: str = "none", params: Sequence[str] = (),
         t_end: Optional[float] = None, dt: Optional[float] = None, threads: int = 1,
         fdm_eps: Optional[float] = None, vtk_dir: str = "",
-        progress: Optional[Callable[[dict], None]] = None) -> Result:
+        progress: Optional[Callable[[dict], None]] = None, checkpoint_every: int = 0,
+        checkpoint_file: str = "", restart_from: str = "") -> Result:
     """Runs the model as `pfem run` does (the same engine, the same numbers). sensitivity: "none",
     "ddm" or "fdm"; params: the parameters to differentiate (default: all of the model's);
     t_end, dt: overrides; vtk_dir: write ParaView files there; progress: called after every step
     with {step, total_steps, time, t_end, newton_iterations, elapsed_seconds, remaining_seconds}
-    (an exception it raises stops the run and is raised here). A simulation failure is not an
-    exception: result.status is "failed" and result.message says why."""
+    (an exception it raises stops the run and is raised here). checkpoint_every N: the state
+    after every N-th step, and when stopped, written to checkpoint_file (the format of `pfem run
+    --checkpoint-every`); restart_from: continue such a checkpoint, of this model and these
+    options, bit-identically (else CheckpointError saying what differs). A simulation failure is
+    not an exception: result.status is "failed" and result.message says why."""
     m = load_model(model)
     out = _engine.run(m.json(), sensitivity=sensitivity, params=list(params), t_end=t_end, dt=dt,
-                      threads=threads, fdm_eps=fdm_eps, vtk_dir=vtk_dir, progress=progress)
+                      threads=threads, fdm_eps=fdm_eps, vtk_dir=vtk_dir, progress=progress,
+                      checkpoint_every=checkpoint_every, checkpoint_file=checkpoint_file,
+                      restart_from=restart_from)
     if "errors" in out:
         raise ModelError(out["errors"])
     r, s = out["responses"], out["sensitivities"]

@@ -127,6 +127,30 @@ class EngineModuleTest(unittest.TestCase):
         switches = sum(x != y for x, y in zip(calls, calls[1:]))
         self.assertGreater(switches, 1, "one run ended before the other started")
 
+    def test_checkpoint_continued_in_process_and_by_pfem_run(self):
+        """A checkpoint written by pfem.run after step 30 of 50 is continued by pfem.run and by
+        `pfem run --restart` (one file format): both the same arrays as a run never stopped."""
+        model = pfem.load_model(os.path.join(SOURCE, "examples", "dam-break.json"))
+        model.data["mesh"]["h"] = 0.01
+        options = dict(sensitivity="ddm", params=["mu"], t_end=0.05)
+        whole = pfem.run(model, **options)
+        checkpoint = os.path.join(self.tmp, "checkpoint.pfem")
+        pfem.run(model, checkpoint_every=30, checkpoint_file=checkpoint, **options)
+        steps = []
+        restarted = pfem.run(model, restart_from=checkpoint, progress=lambda p: steps.append(p["step"]),
+                             **options)
+        self.assertEqual(steps[0], 31)
+        out = os.path.join(self.tmp, "restarted-by-cli")
+        subprocess.run([os.environ["PFEM_CLI"], "run", "--restart", checkpoint, "--out", out], check=True,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        for other in (restarted, read_result_dir(out)):
+            for name, values in whole.responses.items():
+                np.testing.assert_array_equal(other.responses[name], values, err_msg=name)
+            for name, values in whole.sensitivities.items():
+                np.testing.assert_array_equal(other.sensitivities[name], values, err_msg=name)
+        with self.assertRaisesRegex(pfem.CheckpointError, "restart: sensitivity is none here but ddm"):
+            pfem.run(model, restart_from=checkpoint, t_end=0.05)
+
     def test_progress_callback_exception_stops_the_run(self):
         def stop(p):
             raise RuntimeError(f"stop at {p['step']}")

@@ -1,0 +1,30 @@
+#pragma once
+// Everything one step of simulate() hands to the next: what a checkpoint saves after a step and
+// a restart restores (engine/analysis/checkpoint.h). The Problem is not part of it: a restart
+// rebuilds it from the same model.
+#include <optional>
+
+#include "engine/analysis/simulation.h"
+#include "engine/mesh/remesher.h"
+#include "engine/solve/fluid_step.h"
+#include "engine/solve/node_state.h"
+#include "engine/state/state_archive.h"
+#include "engine/structure/structure_model.h"
+
+namespace pfem {
+
+struct RunState {
+  NodeState nodes;
+  // The mesh of the last step: the next remeshing reads its free surface and contact edges.
+  mesh::FluidMesh mesh;
+  std::optional<structure::StructureModel> structure;  // with its history and sensitivities
+  UnifiedStep solver;                                  // bubbles by triangle, LU analysis
+  // The histories so far and the summary's counts (summary.steps: the steps done).
+  SimulationOutput out;
+};
+
+// Saves or restores the state; the structure's presence must match (a restored state lands in
+// a RunState made from the same problem).
+void archive(StateArchive& a, RunState& state);
+
+}  // namespace pfem
