@@ -231,6 +231,19 @@ TEST(ModelParsing, UnknownJsonFieldIsAnErrorNamingTheField) {
   }
 }
 
+// A number beyond a double made the JSON diagnosis throw nlohmann's out_of_range, which no
+// caller expects (found by the model fuzzer: `pfem validate` would abort).
+TEST(ModelParsing, ANumberBeyondADoubleIsAFieldError) {
+  try {
+    parse_model_json(R"({"name": "x", "fluid": {"rho": 1000.0, "kappa": 2.1e555}})");
+    FAIL() << "parsed";
+  } catch (const ModelError& e) {
+    ASSERT_EQ(e.errors().size(), 1u);
+    EXPECT_EQ(e.errors()[0].path, "model");
+    EXPECT_EQ(e.errors()[0].message, "invalid JSON: number overflow parsing '2.1e555'");
+  }
+}
+
 TEST(ModelParsing, RunRejectsAnInvalidModelWithTheFieldPath) {
   auto m = valid_model();
   m.mutable_fluid()->set_rho(-1000.0);
