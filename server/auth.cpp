@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "server/hashing.h"
-#include "server/status.h"
 
 namespace pfem::server {
 namespace {
@@ -52,15 +51,6 @@ bool TokenAuth::accepts(std::string_view authorization) const {
   bool match = false;
   for (const auto& d : digests_) match |= constant_time_equal(digest, d);  // no early exit
   return match;
-}
-
-void TokenAuth::require(const grpc::ServerContext& context) const {
-  if (!enabled()) return;
-  const auto& metadata = context.client_metadata();
-  const auto it = metadata.find("authorization");
-  if (it == metadata.end() || !accepts(std::string_view(it->second.data(), it->second.size()))) {
-    throw ServiceError(grpc::StatusCode::UNAUTHENTICATED, "missing or invalid bearer token");
-  }
 }
 
 }  // namespace pfem::server

@@ -4,9 +4,7 @@
 // Tokens are kept as SHA-256 digests and compared in constant time, every token every time.
 // Missing or wrong tokens give UNAUTHENTICATED with the same message, revealing nothing else.
 //
-// Thread-safety: immutable after construction; check() may be called from any thread.
-#include <grpcpp/server_context.h>
-
+// Thread-safety: immutable after construction; accepts() may be called from any thread.
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -24,8 +22,6 @@ class TokenAuth {
   bool enabled() const { return !digests_.empty(); }
   // True when `authorization` is "Bearer <a known token>" (scheme case-insensitive).
   bool accepts(std::string_view authorization) const;
-  // Throws ServiceError(UNAUTHENTICATED) unless the call carries an accepted token.
-  void require(const grpc::ServerContext& context) const;
 
  private:
   std::vector<std::string> digests_;

@@ -43,21 +43,11 @@ void Evaluator::evaluate(const pfem::v1::EvaluateRequest& request, const StopFun
     default:
       throw_invalid({{"model", "required (or model_id)"}});
   }
-  pfem::v1::RunOptions options;
-  if (request.has_t_end()) options.set_t_end(request.t_end());
-  if (request.has_dt()) options.set_dt(request.dt());
-  if (request.has_fdm_eps()) options.set_fdm_eps(request.fdm_eps());
-  options.set_sensitivity(request.sensitivity() == pfem::v1::SENSITIVITY_METHOD_UNSPECIFIED
-                              ? pfem::v1::SENSITIVITY_METHOD_DDM
-                              : request.sensitivity());
-  *options.mutable_params() = request.params();
-
-  auto functional_errors = check_functionals(model, request.functionals());
-  model = check_run_request(std::move(model), request.parameter_values(), options, limits_, "",
-                            std::move(functional_errors));
-  const std::string key = sha256_hex(canonical_bytes(model) + '\n' + canonical_bytes(options));
+  const EvaluateRun run = check_evaluate_request(request, std::move(model), limits_);
+  const pfem::v1::RunOptions& options = run.options;
+  const std::string key = sha256_hex(canonical_bytes(run.model) + '\n' + canonical_bytes(options));
   const auto compute = [&] {
-    return jobs_.run_now(model, to_run_options(options, SensitivityMethod::kDdm), should_stop);
+    return jobs_.run_now(run.model, to_run_options(options, SensitivityMethod::kDdm), should_stop);
   };
   bool hit = false;
   const auto result = request.no_cache() ? std::make_shared<const RunResult>(compute())

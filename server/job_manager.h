@@ -62,8 +62,9 @@ class JobManager {
   // FAILED_PRECONDITION when it has finished.
   pfem::v1::Job cancel(const std::string& id);
 
-  // Waits up to `timeout` for the job to change after *version, then returns it and sets
-  // *version. A finished job returns at once. Throws NOT_FOUND.
+  // Waits up to `timeout` for the job's state to change after *version (progress alone
+  // shows at the timeout, waking no one), then returns it and sets *version. A finished job
+  // returns at once. Throws NOT_FOUND.
   pfem::v1::Job wait_for_change(const std::string& id, std::uint64_t* version,
                                 std::chrono::milliseconds timeout);
 

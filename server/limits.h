@@ -17,10 +17,15 @@ struct Limits {
   // points took 3.4 CPU-s to validate, growing with their square.
   long max_geometry_points = 200;   // points of all walls and fluid polygons (--max-geometry-points)
   long max_fiber_points = 100000;   // beam elements x integration points x fibers (--max-fiber-points)
+  long max_wall_nodes = 20000;      // wall length / mesh.h, all walls (--max-wall-nodes)
+  // WatchJob and GetResult streams open at once (server/stream_slots.h).
+  long max_streams = 256;            // in total (--max-streams)
+  long max_streams_per_client = 64;  // of one client address (--max-streams-per-client)
 };
 
 // Throws ServiceError(RESOURCE_EXHAUSTED) naming the limit when validating or building the
-// model would exceed max_geometry_points or max_fiber_points. Cheap: call it first.
+// model would exceed max_geometry_points, max_wall_nodes or max_fiber_points. Cheap: call it
+// first.
 void check_model_cost(const pfem::v1::Model& model, const Limits& limits);
 
 // Throws ServiceError(RESOURCE_EXHAUSTED) naming the limit when the run exceeds

@@ -12,8 +12,9 @@ const char* const kServerUsage =
     "                   [--tls-cert F --tls-key F] [--max-queued N] [--max-particles N]\n"
     "                   [--max-steps N] [--max-message-mb N] [--grace-seconds S]\n"
     "                   [--cache-entries N] [--max-store-mb N] [--max-geometry-points N]\n"
-    "                   [--max-fiber-points N] [--reflection] [--health-listen HOST:PORT]\n"
-    "                   [--max-connection-age S]\n"
+    "                   [--max-fiber-points N] [--max-wall-nodes N] [--reflection]\n"
+    "                   [--health-listen HOST:PORT] [--max-connection-age S]\n"
+    "                   [--max-streams N] [--max-streams-per-client N]\n"
     "                   [--umbridge-listen HOST:PORT [--umbridge-model NAME=FILE ...]]\n";
 
 std::vector<std::string> ServerOptions::validate() const {
@@ -31,6 +32,11 @@ std::vector<std::string> ServerOptions::validate() const {
   if (limits.max_steps < 1) errors.push_back("--max-steps: must be >= 1");
   if (limits.max_geometry_points < 1) errors.push_back("--max-geometry-points: must be >= 1");
   if (limits.max_fiber_points < 1) errors.push_back("--max-fiber-points: must be >= 1");
+  if (limits.max_wall_nodes < 1) errors.push_back("--max-wall-nodes: must be >= 1");
+  if (limits.max_streams < 1) errors.push_back("--max-streams: must be >= 1");
+  if (limits.max_streams_per_client < 1) {
+    errors.push_back("--max-streams-per-client: must be >= 1");
+  }
   if (limits.max_message_mb < 1 || limits.max_message_mb > 2047) {
     errors.push_back("--max-message-mb: must be in [1, 2047]");
   }
@@ -81,6 +87,11 @@ ServerOptions parse_server_options(const std::vector<std::string>& args) {
   if (auto v = a.take_int("--max-message-mb")) o.limits.max_message_mb = *v;
   if (auto v = a.take_double("--max-geometry-points")) o.limits.max_geometry_points = static_cast<long>(*v);
   if (auto v = a.take_double("--max-fiber-points")) o.limits.max_fiber_points = static_cast<long>(*v);
+  if (auto v = a.take_double("--max-wall-nodes")) o.limits.max_wall_nodes = static_cast<long>(*v);
+  if (auto v = a.take_double("--max-streams")) o.limits.max_streams = static_cast<long>(*v);
+  if (auto v = a.take_double("--max-streams-per-client")) {
+    o.limits.max_streams_per_client = static_cast<long>(*v);
+  }
   if (auto v = a.take_double("--grace-seconds")) o.grace_seconds = *v;
   if (auto v = a.take_string("--health-listen")) o.health_listen = *v;
   if (auto v = a.take_double("--max-connection-age")) o.max_connection_age_seconds = *v;

@@ -4,6 +4,7 @@
 
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
+#include "engine/io/model_warnings.h"
 #include "server/convert.h"
 #include "server/model_cost.h"
 #include "server/status.h"
@@ -54,6 +55,69 @@ std::vector<FieldError> check_functionals(
     }
   }
   return errors;
+}
+
+void check_submit_request(const pfem::v1::SubmitJobRequest& request, const Limits& limits) {
+  if (request.has_timeout_seconds() &&
+      !(request.timeout_seconds() > 0.0 && std::isfinite(request.timeout_seconds()))) {
+    throw_invalid({{"timeout_seconds", "must be > 0 and finite"}});
+  }
+  check_run_request(request.model(), request.parameter_values(), request.options(), limits);
+}
+
+EvaluateRun check_evaluate_request(const pfem::v1::EvaluateRequest& request,
+                                   pfem::v1::Model model, const Limits& limits) {
+  EvaluateRun run;
+  auto& options = run.options;
+  if (request.has_t_end()) options.set_t_end(request.t_end());
+  if (request.has_dt()) options.set_dt(request.dt());
+  if (request.has_fdm_eps()) options.set_fdm_eps(request.fdm_eps());
+  options.set_sensitivity(request.sensitivity() == pfem::v1::SENSITIVITY_METHOD_UNSPECIFIED
+                              ? pfem::v1::SENSITIVITY_METHOD_DDM
+                              : request.sensitivity());
+  *options.mutable_params() = request.params();
+  auto functional_errors = check_functionals(model, request.functionals());
+  run.model = check_run_request(std::move(model), request.parameter_values(), options, limits,
+                                "", std::move(functional_errors));
+  return run;
+}
+
+pfem::v1::ValidateModelResponse check_validate_request(const pfem::v1::Model& model,
+                                                       const Limits& limits) {
+  // Only a model within the cost limits is validated, and only one within the particle
+  // limit too is built (which finds more).
+  check_model_cost(model, limits);
+  auto errors = polygon_errors(model);
+  const bool buildable = errors.empty() && estimate_particles(model) <= limits.max_particles;
+  for (auto& e : buildable ? model_errors(model) : validate_model(model)) {
+    errors.push_back(std::move(e));
+  }
+  pfem::v1::ValidateModelResponse response;
+  for (const auto& e : errors) {
+    auto* fe = response.add_errors();
+    fe->set_path(e.path);
+    fe->set_message(e.message);
+  }
+  response.set_valid(response.errors().empty());
+  if (response.valid()) {
+    for (const auto& w : model_warnings(model)) {
+      auto* fw = response.add_warnings();
+      fw->set_path(w.path);
+      fw->set_message(w.message);
+    }
+  }
+  const RunEstimate estimate = estimate_run(model);
+  response.set_estimated_particles(estimate.particles);
+  response.set_steps(estimate.steps);
+  response.set_estimated_elements(estimate.elements);
+  response.set_estimated_seconds(estimate.seconds);
+  response.set_seconds_per_particle_step(estimate.seconds_per_particle_step);
+  try {
+    check_run_limits(model, std::nullopt, std::nullopt, limits);
+  } catch (const ServiceError& e) {
+    response.set_over_limit(e.what());  // SubmitJob would answer RESOURCE_EXHAUSTED
+  }
+  return response;
 }
 
 }  // namespace pfem::server

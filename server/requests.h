@@ -21,6 +21,27 @@ pfem::v1::Model check_run_request(
     const pfem::v1::RunOptions& options, const Limits& limits,
     const std::string& options_prefix = "options", std::vector<FieldError> more_errors = {});
 
+// SubmitJob's checks: timeout_seconds, then check_run_request. Throws ServiceError.
+void check_submit_request(const pfem::v1::SubmitJobRequest& request, const Limits& limits);
+
+// What Evaluate runs, once its request has passed the checks.
+struct EvaluateRun {
+  pfem::v1::Model model;        // the parameter values applied
+  pfem::v1::RunOptions options;
+};
+
+// Evaluate's checks on `model` (the request's own, or the one stored under model_id): the
+// functionals, then check_run_request with the request's run options (paths without a
+// prefix: "t_end"). Throws ServiceError.
+EvaluateRun check_evaluate_request(const pfem::v1::EvaluateRequest& request,
+                                   pfem::v1::Model model, const Limits& limits);
+
+// ValidateModel's answer: every field error of a model within the cost limits (and what only
+// building finds, when it is within the particle limit too), the warnings of a valid one, the
+// run estimate, and the limit a SubmitJob would exceed. Throws ServiceError(RESOURCE_EXHAUSTED) beyond the cost limits.
+pfem::v1::ValidateModelResponse check_validate_request(const pfem::v1::Model& model,
+                                                       const Limits& limits);
+
 // Every problem with Evaluate's functionals against the model's recorders
 // ("functionals[1].recorder: no recorder 'x' in the model").
 std::vector<FieldError> check_functionals(

@@ -5,24 +5,15 @@
 #include <grpcpp/impl/server_builder_option.h>
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <thread>
 
 #include "engine/analysis/blas_threads.h"
 #include "server/malformed_requests.h"
+#include "server/port_credentials.h"
 
 namespace pfem::server {
 namespace {
-
-std::string read_file(const std::filesystem::path& file, const char* flag) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error(std::string(flag) + ": cannot read " + file.string());
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Reflection for one builder, on or off. Linking grpc++_reflection registers its plugin for
 // every server of the process (a static initializer), so the option also takes it out.
@@ -48,13 +39,7 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
     throw std::runtime_error(message);
   }
   if (!options_.token_file.empty()) auth_ = TokenAuth::from_file(options_.token_file);
-  std::shared_ptr<grpc::ServerCredentials> credentials = grpc::InsecureServerCredentials();
-  if (!options_.tls_cert.empty()) {
-    grpc::SslServerCredentialsOptions ssl;
-    ssl.pem_key_cert_pairs.push_back({read_file(options_.tls_key, "--tls-key"),
-                                      read_file(options_.tls_cert, "--tls-cert")});
-    credentials = grpc::SslServerCredentials(ssl);
-  }
+  const auto credentials = port_credentials({options_.tls_cert, options_.tls_key}, auth_);
 
   JobManagerOptions job_options;
   job_options.workers = options_.workers > 0
@@ -79,7 +64,7 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
   }
   jobs_ = std::make_unique<JobManager>(*store_, job_options, std::move(run));
   cache_ = std::make_unique<ResultCache>(options_.cache_entries);
-  service_ = std::make_unique<GradientService>(*store_, *jobs_, *cache_, auth_, options_.limits);
+  service_ = std::make_unique<GradientService>(*store_, *jobs_, *cache_, options_.limits);
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::ServerBuilder builder;
@@ -133,7 +118,7 @@ Server::Server(ServerOptions options, JobManager::RunFunction run) : options_(st
 
 // A server with no service of its own: gRPC's default health service is all it answers
 // (the reflection plugin, enabled process-wide, lists just that), plaintext and without the
-// token check, which lives in GradientService.
+// token check, which is the main port's (server/port_credentials.h).
 void Server::start_health_server() {
   grpc::ServerBuilder builder;
   builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);

@@ -1,13 +1,9 @@
 #include "server/service.h"
 
 #include <chrono>
-#include <cmath>
 
-#include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
-#include "engine/io/model_warnings.h"
 #include "server/hashing.h"
-#include "server/model_cost.h"
 #include "server/requests.h"
 #include "server/status.h"
 
@@ -53,69 +49,28 @@ bool write_column(grpc::ServerWriter<pfem::v1::GetResultResponse>* writer,
 
 }  // namespace
 
-grpc::Status GradientService::handle(grpc::ServerContext* context,
-                                     const std::function<grpc::Status()>& body) {
+grpc::Status GradientService::handle(const std::function<grpc::Status()>& body) {
   if (draining_) return {grpc::StatusCode::UNAVAILABLE, "server is shutting down"};
   ++in_flight_;
-  const grpc::Status status = guarded([&] {
-    auth_.require(*context);
-    return body();
-  });
+  const grpc::Status status = guarded(body);
   --in_flight_;
   return status;
 }
 
-grpc::Status GradientService::ValidateModel(grpc::ServerContext* context,
+grpc::Status GradientService::ValidateModel(grpc::ServerContext* /*context*/,
                                             const pfem::v1::ValidateModelRequest* request,
                                             pfem::v1::ValidateModelResponse* response) {
-  return handle(context, [&] {
-    // Only a model within the cost limits is validated, and only one within the particle
-    // limit too is built (which finds more).
-    check_model_cost(request->model(), limits_);
-    auto errors = polygon_errors(request->model());
-    const bool buildable =
-        errors.empty() && estimate_particles(request->model()) <= limits_.max_particles;
-    for (auto& e : buildable ? model_errors(request->model()) : validate_model(request->model())) {
-      errors.push_back(std::move(e));
-    }
-    for (const auto& e : errors) {
-      auto* fe = response->add_errors();
-      fe->set_path(e.path);
-      fe->set_message(e.message);
-    }
-    response->set_valid(response->errors().empty());
-    if (response->valid()) {
-      for (const auto& w : model_warnings(request->model())) {
-        auto* fw = response->add_warnings();
-        fw->set_path(w.path);
-        fw->set_message(w.message);
-      }
-    }
-    const RunEstimate estimate = estimate_run(request->model());
-    response->set_estimated_particles(estimate.particles);
-    response->set_steps(estimate.steps);
-    response->set_estimated_elements(estimate.elements);
-    response->set_estimated_seconds(estimate.seconds);
-    response->set_seconds_per_particle_step(estimate.seconds_per_particle_step);
-    try {
-      check_run_limits(request->model(), std::nullopt, std::nullopt, limits_);
-    } catch (const ServiceError& e) {
-      response->set_over_limit(e.what());  // SubmitJob would answer RESOURCE_EXHAUSTED
-    }
+  return handle([&] {
+    *response = check_validate_request(request->model(), limits_);
     return grpc::Status::OK;
   });
 }
 
-grpc::Status GradientService::SubmitJob(grpc::ServerContext* context,
+grpc::Status GradientService::SubmitJob(grpc::ServerContext* /*context*/,
                                         const pfem::v1::SubmitJobRequest* request,
                                         pfem::v1::SubmitJobResponse* response) {
-  return handle(context, [&] {
-    if (request->has_timeout_seconds() &&
-        !(request->timeout_seconds() > 0.0 && std::isfinite(request->timeout_seconds()))) {
-      throw_invalid({{"timeout_seconds", "must be > 0 and finite"}});
-    }
-    check_run_request(request->model(), request->parameter_values(), request->options(),
-                      limits_);
+  return handle([&] {
+    check_submit_request(*request, limits_);
     response->set_job_id(jobs_.submit(*request));
     return grpc::Status::OK;
   });
@@ -124,8 +79,9 @@ grpc::Status GradientService::SubmitJob(grpc::ServerContext* context,
 grpc::Status GradientService::WatchJob(grpc::ServerContext* context,
                                        const pfem::v1::JobRequest* request,
                                        grpc::ServerWriter<pfem::v1::Job>* writer) {
-  return handle(context, [&] {
+  return handle([&] {
     require_job_id(*request);
+    const auto slot = streams_.acquire(context->peer());
     constexpr auto kMinInterval = std::chrono::milliseconds(100);
     std::uint64_t version = 0;
     std::uint64_t sent_version = ~std::uint64_t{0};
@@ -150,10 +106,10 @@ grpc::Status GradientService::WatchJob(grpc::ServerContext* context,
   });
 }
 
-grpc::Status GradientService::GetJob(grpc::ServerContext* context,
+grpc::Status GradientService::GetJob(grpc::ServerContext* /*context*/,
                                      const pfem::v1::JobRequest* request,
                                      pfem::v1::Job* response) {
-  return handle(context, [&] {
+  return handle([&] {
     require_job_id(*request);
     *response = jobs_.get(request->job_id());
     return grpc::Status::OK;
@@ -163,15 +119,16 @@ grpc::Status GradientService::GetJob(grpc::ServerContext* context,
 grpc::Status GradientService::GetResult(grpc::ServerContext* context,
                                         const pfem::v1::JobRequest* request,
                                         grpc::ServerWriter<pfem::v1::GetResultResponse>* writer) {
-  return handle(context, [&] {
+  return handle([&] {
     require_job_id(*request);
+    const auto slot = streams_.acquire(context->peer());
     const auto job = jobs_.get(request->job_id());
     if (!finished(job.state())) {
       throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
                          "job '" + job.id() + "' is " + pfem::v1::JobState_Name(job.state()) +
                              "; its result is available once it has finished");
     }
-    const auto result = store_.get_result(job.id());
+    const auto result = results_.open(job.id());
     if (!result) {
       throw ServiceError(grpc::StatusCode::NOT_FOUND,
                          "job '" + job.id() + "' has no result (" +
@@ -206,20 +163,20 @@ grpc::Status GradientService::GetResult(grpc::ServerContext* context,
   });
 }
 
-grpc::Status GradientService::CancelJob(grpc::ServerContext* context,
+grpc::Status GradientService::CancelJob(grpc::ServerContext* /*context*/,
                                         const pfem::v1::JobRequest* request,
                                         pfem::v1::Job* response) {
-  return handle(context, [&] {
+  return handle([&] {
     require_job_id(*request);
     *response = jobs_.cancel(request->job_id());
     return grpc::Status::OK;
   });
 }
 
-grpc::Status GradientService::ListJobs(grpc::ServerContext* context,
+grpc::Status GradientService::ListJobs(grpc::ServerContext* /*context*/,
                                        const pfem::v1::ListJobsRequest* request,
                                        pfem::v1::ListJobsResponse* response) {
-  return handle(context, [&] {
+  return handle([&] {
     std::vector<FieldError> errors;
     if (request->limit() < 0) errors.push_back({"limit", "must be >= 0"});
     if (!pfem::v1::JobState_IsValid(request->state())) {
@@ -240,10 +197,10 @@ grpc::Status GradientService::ListJobs(grpc::ServerContext* context,
   });
 }
 
-grpc::Status GradientService::PutModel(grpc::ServerContext* context,
+grpc::Status GradientService::PutModel(grpc::ServerContext* /*context*/,
                                        const pfem::v1::PutModelRequest* request,
                                        pfem::v1::PutModelResponse* response) {
-  return handle(context, [&] {
+  return handle([&] {
     const auto errors = validate_model(request->model());
     if (!errors.empty()) throw_invalid(errors);
     const std::string id = sha256_hex(canonical_bytes(request->model()));
@@ -256,7 +213,7 @@ grpc::Status GradientService::PutModel(grpc::ServerContext* context,
 grpc::Status GradientService::Evaluate(grpc::ServerContext* context,
                                        const pfem::v1::EvaluateRequest* request,
                                        pfem::v1::EvaluateResponse* response) {
-  return handle(context, [&] {
+  return handle([&] {
     const auto deadline = context->deadline();
     const auto should_stop = [context, deadline] {
       if (context->IsCancelled()) return grpc::StatusCode::CANCELLED;

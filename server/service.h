@@ -1,5 +1,6 @@
 #pragma once
-// pfem.v1.GradientService handlers. Each one is thin: authenticate, check the request, call
+// pfem.v1.GradientService handlers (the port has authenticated the call before its request
+// was read: server/port_credentials.h). Each one is thin: check the request, call
 // the job manager / store / cache, convert the answer; errors are converted once by
 // guarded() (server/status.h), so no exception crosses into gRPC.
 #include <grpcpp/grpcpp.h>
@@ -8,25 +9,26 @@
 #include <functional>
 
 #include "pfem/v1/service.grpc.pb.h"
-#include "server/auth.h"
 #include "server/evaluator.h"
 #include "server/job_manager.h"
 #include "server/limits.h"
+#include "server/open_results.h"
 #include "server/result_cache.h"
 #include "server/store.h"
+#include "server/stream_slots.h"
 
 namespace pfem::server {
 
 class GradientService final : public pfem::v1::GradientService::Service {
  public:
   // All references must outlive the service.
-  GradientService(Store& store, JobManager& jobs, ResultCache& cache, const TokenAuth& auth,
-                  const Limits& limits)
+  GradientService(Store& store, JobManager& jobs, ResultCache& cache, const Limits& limits)
       : store_(store),
         jobs_(jobs),
-        auth_(auth),
         limits_(limits),
-        evaluator_(store, jobs, cache, limits) {}
+        evaluator_(store, jobs, cache, limits),
+        streams_(limits.max_streams, limits.max_streams_per_client),
+        results_(store) {}
 
   grpc::Status ValidateModel(grpc::ServerContext* context,
                              const pfem::v1::ValidateModelRequest* request,
@@ -58,13 +60,14 @@ class GradientService final : public pfem::v1::GradientService::Service {
 
  private:
   // Runs one handler body: refuses it while draining, counts it, converts errors (guarded).
-  grpc::Status handle(grpc::ServerContext* context, const std::function<grpc::Status()>& body);
+  grpc::Status handle(const std::function<grpc::Status()>& body);
 
   Store& store_;
   JobManager& jobs_;
-  const TokenAuth& auth_;
   const Limits& limits_;
   const Evaluator evaluator_;  // Evaluate (shared with the UM-Bridge endpoint)
+  StreamSlots streams_;        // WatchJob and GetResult streams open
+  OpenResults results_;        // the results GetResult streams are sending
   std::atomic<bool> draining_{false};
   std::atomic<int> in_flight_{0};
 };

@@ -89,11 +89,10 @@ struct Store::Statement {
     while (step()) {
     }
   }
-  std::string column_blob(int i) const {
+  // Parses column i in place (no copy of the blob: a result may be tens of MB).
+  bool parse_blob(int i, google::protobuf::MessageLite* message) const {
     const void* p = sqlite3_column_blob(stmt, i);
-    const int n = sqlite3_column_bytes(stmt, i);
-    return p ? std::string(static_cast<const char*>(p), static_cast<std::size_t>(n))
-             : std::string();
+    return message->ParseFromArray(p, sqlite3_column_bytes(stmt, i));
   }
   std::string column_text(int i) const {
     const unsigned char* p = sqlite3_column_text(stmt, i);
@@ -283,7 +282,7 @@ std::optional<pfem::v1::Job> Store::get_job(const std::string& id) {
   auto& q = prepare("SELECT job, state FROM jobs WHERE id = ?").bind(1, id);
   if (!q.step()) return std::nullopt;
   pfem::v1::Job job;
-  if (!job.ParseFromString(q.column_blob(0))) job = unreadable_job(id, q.column_int(1));
+  if (!q.parse_blob(0, &job)) job = unreadable_job(id, q.column_int(1));
   q.reset();
   return job;
 }
@@ -293,7 +292,7 @@ std::optional<pfem::v1::SubmitJobRequest> Store::get_request(const std::string& 
   auto& q = prepare("SELECT request FROM jobs WHERE id = ?").bind(1, id);
   if (!q.step()) return std::nullopt;
   pfem::v1::SubmitJobRequest request;
-  if (!request.ParseFromString(q.column_blob(0))) throw StoreError("corrupt request " + id);
+  if (!q.parse_blob(0, &request)) throw StoreError("corrupt request " + id);
   q.reset();
   return request;
 }
@@ -303,7 +302,7 @@ std::optional<pfem::v1::Result> Store::get_result(const std::string& id) {
   auto& q = prepare("SELECT result FROM results WHERE job_id = ?").bind(1, id);
   if (!q.step()) return std::nullopt;
   pfem::v1::Result result;
-  if (!result.ParseFromString(q.column_blob(0))) throw StoreError("corrupt result " + id);
+  if (!q.parse_blob(0, &result)) throw StoreError("corrupt result " + id);
   q.reset();
   return result;
 }
@@ -319,7 +318,7 @@ std::vector<pfem::v1::Job> Store::list_jobs(pfem::v1::JobState state, int limit)
   std::vector<pfem::v1::Job> jobs;
   while (q.step()) {
     pfem::v1::Job job;
-    if (!job.ParseFromString(q.column_blob(0))) job = unreadable_job(q.column_text(1), q.column_int(2));
+    if (!q.parse_blob(0, &job)) job = unreadable_job(q.column_text(1), q.column_int(2));
     jobs.push_back(std::move(job));
   }
   q.reset();
@@ -359,7 +358,7 @@ std::vector<std::string> Store::recover_queued() {
                   .bind(2, static_cast<long long>(pfem::v1::JOB_STATE_QUEUED));
     while (q.step()) {
       pfem::v1::Job job;
-      if (!job.ParseFromString(q.column_blob(0))) {
+      if (!q.parse_blob(0, &job)) {
         job = unreadable_job(q.column_text(1), pfem::v1::JOB_STATE_FAILED);
       }
       interrupted.emplace_back(std::move(job), q.column_int(3) != 0);
@@ -419,7 +418,7 @@ std::optional<pfem::v1::Model> Store::get_model(const std::string& id) {
   auto& q = prepare("SELECT model FROM models WHERE id = ?").bind(1, id);
   if (!q.step()) return std::nullopt;
   pfem::v1::Model model;
-  if (!model.ParseFromString(q.column_blob(0))) throw StoreError("corrupt model " + id);
+  if (!q.parse_blob(0, &model)) throw StoreError("corrupt model " + id);
   q.reset();
   return model;
 }

@@ -164,6 +164,9 @@ void ModelChecker::check_mesh() {
   if (const long particles = estimate_particles(model_); particles > kMaxParticles)
     error("mesh.h", "gives about " + std::to_string(particles) + " fluid particles, more than the " +
                         std::to_string(kMaxParticles) + " a run may take");
+  if (const long nodes = count_wall_nodes(model_); nodes > kMaxWallNodes)
+    error("mesh.h", "gives " + std::to_string(nodes) + " wall nodes (wall length / mesh.h), more than the " +
+                        std::to_string(kMaxWallNodes) + " a model may have");
   if (model_.mesh().has_alpha()) {
     const double a = model_.mesh().alpha();
     if (!std::isfinite(a) || a < 0.8 || a > 3.0) error("mesh.alpha", "must be in [0.8, 3]");
@@ -651,8 +654,14 @@ void ModelChecker::check_beams() {
       if (b.elements() >= 1 && std::isfinite(h) && h > 0 && length / n > kMaxBeamElementSpacings * h) {
         std::ostringstream why;
         why << "gives elements of " << length / n << " m, longer than " << kMaxBeamElementSpacings
-            << " mesh.h: water would pass between the beam's nodes; use at least "
-            << static_cast<long>(std::ceil(length / (kMaxBeamElementSpacings * h)));
+            << " mesh.h: water would pass between the beam's nodes; ";
+        // Compared as a double: a beam 1e200 m long needs more elements than a long holds.
+        const double needed = std::ceil(length / (kMaxBeamElementSpacings * h));
+        if (needed <= kMaxBeamElements) {
+          why << "use at least " << static_cast<long>(needed);
+        } else {
+          why << "it would need more than the " << kMaxBeamElements << " elements a beam may have";
+        }
         error(path + ".elements", why.str());
       }
     }

@@ -120,6 +120,10 @@ std::vector<FieldError> diagnose(std::string_view json, std::string protobuf_mes
     const std::string marker = "parse error at ";
     if (const auto at = what.find(marker); at != std::string::npos) what = what.substr(at + marker.size());
     return {{"model", "invalid JSON at " + what}};
+  } catch (const nlohmann::json::exception& e) {  // a number out of range: 2.1e555 (the fuzzer's)
+    std::string what = e.what();  // "[json.exception.out_of_range.406] number overflow parsing '...'"
+    if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
+    return {{"model", "invalid JSON: " + what}};
   }
   std::replace(protobuf_message.begin(), protobuf_message.end(), '\n', ' ');  // spans lines (text, caret)
   return {{"model", "invalid JSON: " + protobuf_message}};

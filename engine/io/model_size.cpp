@@ -1,5 +1,6 @@
 #include "engine/io/model_size.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/io/geometry_bounds.h"
@@ -23,6 +24,27 @@ long estimate_particles(const pfem::v1::Model& model) {
   if (!std::isfinite(total)) return 0;
   if (total > 1e15) return static_cast<long>(1e15);
   return std::lround(total);
+}
+
+long count_wall_nodes(const pfem::v1::Model& model) {
+  const double h = model.mesh().h();
+  if (!(h > 0.0) || !std::isfinite(h)) return 0;
+  constexpr double kCap = 1e15;
+  double total = 0.0;
+  for (const auto& w : model.walls()) {
+    const int n = w.points_size();
+    if (n < 2) continue;
+    const int segments = w.closed() ? n : n - 1;
+    total += w.closed() ? 0.0 : 1.0;
+    for (int k = 0; k < segments; ++k) {
+      const auto& a = w.points(k);
+      const auto& b = w.points((k + 1) % n);
+      const double pieces = std::ceil(std::hypot(b.x() - a.x(), b.y() - a.y()) / h - 1e-9);
+      if (!std::isnan(pieces)) total += std::max(1.0, pieces);
+    }
+    if (total > kCap) return static_cast<long>(kCap);
+  }
+  return static_cast<long>(total);
 }
 
 long count_steps(double t_end, double dt) {

@@ -12,11 +12,19 @@ namespace pfem {
 // the memory or run for months; validation says so instead of starting it.
 inline constexpr long kMaxParticles = 10'000'000;
 inline constexpr long kMaxSteps = 1'000'000'000;
+// Building finds every wall node's duplicates among the others (quadratic): 1e5 nodes take
+// seconds to build.
+inline constexpr long kMaxWallNodes = 100'000;
 
 // Fluid particles the model starts with: the area of every fluid region (rectangle, or polygon
 // by the shoelace formula) over h^2, rounded (capped at 1e15). 0 when h is not a positive
 // finite number (validation reports that).
 long estimate_particles(const pfem::v1::Model& model);
+
+// The wall nodes building makes: ceil(length / h) pieces for every wall segment, one more node
+// for every open wall (capped at 1e15; a segment with a NaN end is left to validation). 0
+// when h is not a positive finite number. Two points 1e57 m apart are one wall of 1e59 nodes.
+long count_wall_nodes(const pfem::v1::Model& model);
 
 // The steps of a run, ceil(t_end / dt) with a relative tolerance of 1e-9 (the last step is
 // shortened to end at t_end), the overrides taking precedence over model.analysis (capped at

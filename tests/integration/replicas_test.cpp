@@ -3,8 +3,6 @@
 // 127.0.0.1 behind one ipv4: target: the simulations are spread over all three (each server
 // counts the runs of its engine), beta and pf are bit-identical to one server at concurrency
 // 1, and with one replica killed by SIGKILL mid-run the analysis completes with the same result.
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -13,6 +11,7 @@
 #include <regex>
 #include <sstream>
 
+#include "tests/integration/server_process.h"
 #include "tests/integration/service_test_support.h"
 
 namespace {
@@ -82,39 +81,9 @@ struct Replica {
   std::unique_ptr<pfem::server::Server> server;
 };
 
-// One pfem-server process; the port read from its "listening on" line.
-struct ServerProcess {
-  pid_t pid = -1;
-  int port = 0;
-  explicit ServerProcess(const std::filesystem::path& dir) {
-    int fds[2];
-    EXPECT_EQ(::pipe(fds), 0);
-    pid = ::fork();
-    if (pid == 0) {
-      ::dup2(fds[1], STDOUT_FILENO);
-      ::close(fds[0]);
-      const std::string bin = std::string(PFEM_BINARY_DIR) + "/bin/pfem-server";
-      const std::string data = dir.string();
-      ::execl(bin.c_str(), bin.c_str(), "--listen", "127.0.0.1:0", "--data-dir", data.c_str(),
-              "--workers", "1", static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
-    ::close(fds[1]);
-    std::string line;
-    char c;
-    while (::read(fds[0], &c, 1) == 1 && c != '\n') line += c;
-    ::close(fds[0]);
-    const auto colon = line.rfind(':');
-    if (colon != std::string::npos) port = std::atoi(line.c_str() + colon + 1);
-  }
-  ~ServerProcess() { stop(SIGTERM); }
-  void stop(int signal) {
-    if (pid <= 0) return;
-    ::kill(pid, signal);
-    ::waitpid(pid, nullptr, 0);
-    pid = -1;
-  }
-};
+std::vector<std::string> replica_flags(const std::filesystem::path& dir) {
+  return {"--data-dir", dir.string(), "--workers", "1"};
+}
 
 // Wall time of the three-replica run of the first test: the second kills a replica at 40 % of it.
 double three_replica_seconds = 2.0;
@@ -162,10 +131,9 @@ TEST(Replicas, ImportanceSamplingSpreadsOverThreeReplicasWithTheSameResult) {
 TEST(Replicas, ASigkilledReplicaCostsTimeNotTheResult) {
   const Figures& ref = reference();
   TempDir dir("replicas_kill");
-  ServerProcess a(dir.path / "a"), b(dir.path / "b"), c(dir.path / "c");
-  ASSERT_TRUE(a.port > 0 && b.port > 0 && c.port > 0);
-  const auto address = [](const ServerProcess& s) { return "127.0.0.1:" + std::to_string(s.port); };
-  const std::string target = "ipv4:" + address(a) + "," + address(b) + "," + address(c);
+  ServerProcess a(replica_flags(dir.path / "a")), b(replica_flags(dir.path / "b")),
+      c(replica_flags(dir.path / "c"));
+  const std::string target = "ipv4:" + a.address() + "," + b.address() + "," + c.address();
   std::atomic<bool> done{false};
   Output o;
   std::thread form([&] {
@@ -176,7 +144,7 @@ TEST(Replicas, ASigkilledReplicaCostsTimeNotTheResult) {
   // Mid-run: FORM is done and the sampling, three calls in flight, under way.
   std::this_thread::sleep_for(std::chrono::duration<double>(0.4 * three_replica_seconds));
   const bool killed_mid_run = !done;
-  b.stop(SIGKILL);
+  b.stop(SIGKILL, 10);
   form.join();
   EXPECT_TRUE(killed_mid_run) << "the analysis ended before the kill: make it longer";
   ASSERT_EQ(o.exit_code, 0) << o.out;

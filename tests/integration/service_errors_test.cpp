@@ -256,7 +256,7 @@ TEST(ServiceReflection, IsOffByDefault) {
   EXPECT_EQ(reflection_list(server.address()).find("pfem.v1.GradientService"), std::string::npos);
 }
 
-TEST(ServiceAuth, MissingOrWrongTokensAreUnauthenticatedAndHealthStaysOpen) {
+TEST(ServiceAuth, MissingOrWrongTokensAreUnauthenticatedHealthIncluded) {
   TempDir dir("auth");
   const auto token_file = dir.path / "tokens";
   std::ofstream(token_file) << "right-token\n";
@@ -318,13 +318,18 @@ TEST(ServiceAuth, MissingOrWrongTokensAreUnauthenticatedAndHealthStaysOpen) {
                 good ? grpc::StatusCode::NOT_FOUND : grpc::StatusCode::UNAUTHENTICATED);
     }
   }
+  // The health service of the main port needs the token too (without one: --health-listen).
   for (const std::string service : {"", "pfem.v1.GradientService"}) {
     int serving = -1;
-    ASSERT_TRUE(health_check(server.address(), service, &serving).ok()) << service;
+    const auto refused = health_check(server.address(), service, &serving);
+    EXPECT_EQ(refused.error_code(), grpc::StatusCode::UNAUTHENTICATED) << service;
+    EXPECT_EQ(refused.error_message(), "missing or invalid bearer token");
+    ASSERT_TRUE(health_check(server.address(), service, &serving, "right-token").ok()) << service;
     EXPECT_EQ(serving, 1) << service;
   }
   int serving = -1;
-  EXPECT_EQ(health_check(server.address(), "pfem.v1.NoSuchService", &serving).error_code(),
+  EXPECT_EQ(health_check(server.address(), "pfem.v1.NoSuchService", &serving, "right-token")
+                .error_code(),
             grpc::StatusCode::NOT_FOUND);
 }
 

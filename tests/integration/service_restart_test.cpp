@@ -1,71 +1,18 @@
 // The pfem-server binary across crashes and drains: after `kill -9` during a job, a restart on
 // the same data dir keeps the stored results bit for bit and completes the interrupted job;
 // SIGTERM drains (the running job is stored as queued) and the next start completes it.
+#include "tests/integration/server_process.h"
 #include "tests/integration/service_test_support.h"
-
-#include <signal.h>
-#include <sys/wait.h>
-
-#include <cstdio>
 
 namespace {
 
 using namespace pfem::testing;
 
-// A pfem-server child process; its address is read from the first line it prints.
-class ServerProcess {
- public:
-  ServerProcess(const std::filesystem::path& data_dir, double grace_seconds) {
-    int out[2];
-    if (::pipe(out) != 0) throw std::runtime_error("pipe");
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      ::dup2(out[1], STDOUT_FILENO);
-      ::close(out[0]);
-      ::close(out[1]);
-      const std::string binary = std::string(PFEM_BINARY_DIR) + "/bin/pfem-server";
-      const std::string dir = data_dir.string();
-      const std::string grace = std::to_string(grace_seconds);
-      ::execl(binary.c_str(), binary.c_str(), "--listen", "127.0.0.1:0", "--data-dir",
-              dir.c_str(), "--workers", "1", "--grace-seconds", grace.c_str(),
-              static_cast<char*>(nullptr));
-      std::_Exit(127);
-    }
-    ::close(out[1]);
-    FILE* in = ::fdopen(out[0], "r");
-    char line[256] = "";
-    if (!std::fgets(line, sizeof line, in)) throw std::runtime_error("pfem-server printed nothing");
-    std::fclose(in);
-    std::string text(line);
-    const auto at = text.rfind(' ');
-    address_ = text.substr(at + 1, text.find_last_not_of("\r\n") - at);
-  }
-  ~ServerProcess() {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-  }
-  const std::string& address() const { return address_; }
-  // Sends `signal` and waits (at most `seconds`) for the exit; returns the wait status.
-  int stop(int signal, double seconds) {
-    ::kill(pid_, signal);
-    int status = -1;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        return status;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-  std::string address_;
-};
+// One worker, the drain's grace period as given.
+std::vector<std::string> server_flags(const std::filesystem::path& data_dir, double grace_seconds) {
+  return {"--data-dir", data_dir.string(), "--workers", "1", "--grace-seconds",
+          std::to_string(grace_seconds)};
+}
 
 pfem::v1::SubmitJobRequest hydrostatic(double t_end, pfem::v1::SensitivityMethod method) {
   pfem::v1::SubmitJobRequest request;
@@ -74,14 +21,6 @@ pfem::v1::SubmitJobRequest hydrostatic(double t_end, pfem::v1::SensitivityMethod
   request.mutable_options()->set_t_end(t_end);
   request.mutable_options()->set_sensitivity(method);
   return request;
-}
-
-std::string submit(pfem::v1::GradientService::Stub& stub, const pfem::v1::SubmitJobRequest& r) {
-  grpc::ClientContext context;
-  pfem::v1::SubmitJobResponse response;
-  const auto status = stub.SubmitJob(&context, r, &response);
-  EXPECT_TRUE(status.ok()) << status.error_message();
-  return response.job_id();
 }
 
 // Waits until the job has completed at least `step` steps.
@@ -93,36 +32,26 @@ pfem::v1::Job wait_for_step(pfem::v1::GradientService::Stub& stub, const std::st
   return job;
 }
 
-std::string result_bytes(pfem::v1::GradientService::Stub& stub, const std::string& address,
-                         const std::string& id) {
-  pfem::client::ConnectionOptions connection;
-  connection.server = address;
-  pfem::v1::Result result;
-  const auto status = pfem::client::fetch_result(stub, connection, id, &result);
-  EXPECT_TRUE(status.ok()) << status.error_message();
-  return result.SerializeAsString();
-}
-
 TEST(ServiceRestart, KillNineThenRestartKeepsResultsAndCompletesTheInterruptedJob) {
   TempDir dir("restart");
   std::string done_id, interrupted_id, done_bytes;
   {
-    ServerProcess first(dir.path, 5.0);
+    ServerProcess first(server_flags(dir.path, 5.0));
     auto stub = make_stub(first.address());
-    done_id = submit(*stub, hydrostatic(0.004, pfem::v1::SENSITIVITY_METHOD_FDM));
+    done_id = submit_job(*stub, hydrostatic(0.004, pfem::v1::SENSITIVITY_METHOD_FDM));
     ASSERT_EQ(wait_for_state(*stub, done_id, pfem::v1::JOB_STATE_SUCCEEDED, 60).state(),
               pfem::v1::JOB_STATE_SUCCEEDED);
     done_bytes = result_bytes(*stub, first.address(), done_id);
     ASSERT_GT(done_bytes.size(), 100u);
 
-    interrupted_id = submit(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
+    interrupted_id = submit_job(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
     const auto running = wait_for_step(*stub, interrupted_id, 2);
     ASSERT_EQ(running.state(), pfem::v1::JOB_STATE_RUNNING);
     ASSERT_LT(running.progress().step(), 200);
     const int status = first.stop(SIGKILL, 10);
     ASSERT_TRUE(WIFSIGNALED(status));
   }
-  ServerProcess second(dir.path, 5.0);
+  ServerProcess second(server_flags(dir.path, 5.0));
   auto stub = make_stub(second.address());
   EXPECT_EQ(result_bytes(*stub, second.address(), done_id), done_bytes);
 
@@ -150,9 +79,9 @@ TEST(ServiceRestart, ACancelAcknowledgedBeforeKillNineStaysCancelled) {
   TempDir dir("restart_cancel");
   std::string id;
   {
-    ServerProcess first(dir.path, 5.0);
+    ServerProcess first(server_flags(dir.path, 5.0));
     auto stub = make_stub(first.address());
-    id = submit(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
+    id = submit_job(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
     ASSERT_EQ(wait_for_step(*stub, id, 1).state(), pfem::v1::JOB_STATE_RUNNING);
     grpc::ClientContext context;
     pfem::v1::JobRequest request;
@@ -161,7 +90,7 @@ TEST(ServiceRestart, ACancelAcknowledgedBeforeKillNineStaysCancelled) {
     ASSERT_TRUE(stub->CancelJob(&context, request, &job).ok());
     ASSERT_TRUE(WIFSIGNALED(first.stop(SIGKILL, 10)));
   }
-  ServerProcess second(dir.path, 5.0);
+  ServerProcess second(server_flags(dir.path, 5.0));
   auto stub = make_stub(second.address());
   const auto job = wait_for_state(*stub, id, pfem::v1::JOB_STATE_CANCELLED, 10);
   EXPECT_EQ(job.state(), pfem::v1::JOB_STATE_CANCELLED) << pfem::v1::JobState_Name(job.state());
@@ -174,9 +103,9 @@ TEST(ServiceRestart, SigtermDrainsAndTheNextStartCompletesTheJob) {
   TempDir dir("drain");
   std::string id;
   {
-    ServerProcess first(dir.path, 0.0);  // no grace: interrupt at once
+    ServerProcess first(server_flags(dir.path, 0.0));  // no grace: interrupt at once
     auto stub = make_stub(first.address());
-    id = submit(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
+    id = submit_job(*stub, hydrostatic(0.4, pfem::v1::SENSITIVITY_METHOD_NONE));
     const auto running = wait_for_step(*stub, id, 1);
     ASSERT_EQ(running.state(), pfem::v1::JOB_STATE_RUNNING);
     ASSERT_LT(running.progress().step(), 200);
@@ -187,7 +116,7 @@ TEST(ServiceRestart, SigtermDrainsAndTheNextStartCompletesTheJob) {
     // The step in progress, not the whole run.
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
   }
-  ServerProcess second(dir.path, 5.0);
+  ServerProcess second(server_flags(dir.path, 5.0));
   auto stub = make_stub(second.address());
   const auto job = wait_for_state(*stub, id, pfem::v1::JOB_STATE_SUCCEEDED, 60);
   EXPECT_EQ(job.state(), pfem::v1::JOB_STATE_SUCCEEDED);

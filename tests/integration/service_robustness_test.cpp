@@ -99,6 +99,42 @@ TEST(ServiceRobustness, AJobWhoseEndCannotBeStoredEndsFailedForItsWatchers) {
             grpc::StatusCode::FAILED_PRECONDITION);
 }
 
+// A cancel acknowledged while the run takes its last step is kept: the job ends CANCELLED (with
+// its whole result), not SUCCEEDED (the soak test saw 4 in 3 710 acknowledged cancels end
+// SUCCEEDED). Once the run's end is being decided, a cancel is FAILED_PRECONDITION.
+TEST(ServiceRobustness, ACancelAcknowledgedAtTheRunsLastStepIsKept) {
+  TempDir dir("robust_late_cancel");
+  std::atomic<bool> at_end{false}, release{false};
+  const auto run = [&](const pfem::v1::Model&, const pfem::RunOptions&) {
+    at_end = true;  // past the last check of the cancel flag
+    while (!release) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    pfem::RunResult r;
+    r.summary.status = pfem::RunStatus::kCompleted;
+    r.summary.steps = 5;
+    return r;
+  };
+  pfem::server::Server server(local_options(dir.path), run);
+  auto stub = make_stub(server.address());
+  std::string id;
+  ASSERT_TRUE(submit(*stub, fake_request(), &id).ok());
+  while (!at_end) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  pfem::v1::JobRequest request;
+  request.set_job_id(id);
+  pfem::v1::Job job;
+  {
+    grpc::ClientContext context;
+    ASSERT_TRUE(stub->CancelJob(&context, request, &job).ok());
+  }
+  release = true;
+  const auto ended = watch_to_end(*stub, id);
+  EXPECT_EQ(ended.state(), pfem::v1::JOB_STATE_CANCELLED);
+  EXPECT_EQ(ended.error().message(), "cancelled by a client (the run had reached its end)");
+  EXPECT_EQ(ended.error().step(), 5);
+  grpc::ClientContext context;
+  EXPECT_EQ(stub->CancelJob(&context, request, &job).error_code(),
+            grpc::StatusCode::FAILED_PRECONDITION);
+}
+
 // A database at its cap (--max-store-mb; SQLite answers SQLITE_FULL as for a full disk): a
 // result too big to store ends its job FAILED (stored, without the result), and a request too
 // big to store is RESOURCE_EXHAUSTED, not INTERNAL.
@@ -271,6 +307,19 @@ TEST(ServiceRobustness, ModelCostIsBoundedBeforeValidationStarts) {
     status = stub->ValidateModel(&context, request, &response);
     EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   }
+
+  // Two points far apart are few points but many wall nodes (found by the request fuzzer: a
+  // wall point at y = -1.9e57 passed every check, and building it overflowed an int).
+  auto long_wall = fake_request();
+  auto* far = long_wall.mutable_model()->mutable_walls(0)->mutable_points(1);
+  far->set_y(-1.9e57);
+  status = submit(*stub, long_wall, &id);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << status.error_message();
+  EXPECT_TRUE(mentions(status, "max-wall-nodes limit exceeded: the walls make 1000000000000000 "
+                               "wall nodes (their length / mesh.h), the limit is 20000"));
+  far->set_y(-100.0);  // two 100 m walls at h = 0.01: just past the 20 000
+  status = submit(*stub, long_wall, &id);
+  EXPECT_TRUE(mentions(status, "max-wall-nodes limit exceeded"));
 
   auto fibers = fake_request();
   auto* structure = fibers.mutable_model()->mutable_structure();

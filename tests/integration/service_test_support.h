@@ -92,12 +92,14 @@ inline std::unique_ptr<pfem::v1::GradientService::Stub> make_stub(const std::str
 }
 
 // Health of one service ("" = the server).
-inline grpc::Status health_check(const std::string& address, const std::string& service, int* serving_status) {
+inline grpc::Status health_check(const std::string& address, const std::string& service,
+                                 int* serving_status, const std::string& token = "") {
   auto channel = grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
   grpc::GenericStub stub(channel);
   grpc::CompletionQueue cq;
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  if (!token.empty()) context.AddMetadata("authorization", "Bearer " + token);
   std::string encoded;  // HealthCheckRequest{service}: field 1, length-delimited
   if (!service.empty()) encoded = std::string{0x0a, static_cast<char>(service.size())} + service;
   grpc::Slice slice(encoded);
@@ -191,6 +193,27 @@ struct FakeEngine {
     };
   }
 };
+
+// Submits the request; the job id (empty, with a test failure, when refused).
+inline std::string submit_job(pfem::v1::GradientService::Stub& stub,
+                              const pfem::v1::SubmitJobRequest& request) {
+  grpc::ClientContext context;
+  pfem::v1::SubmitJobResponse response;
+  const auto status = stub.SubmitJob(&context, request, &response);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return response.job_id();
+}
+
+// The finished job's result reassembled from GetResult, serialized (to compare bit for bit).
+inline std::string result_bytes(pfem::v1::GradientService::Stub& stub, const std::string& address,
+                                const std::string& id) {
+  pfem::client::ConnectionOptions connection;
+  connection.server = address;
+  pfem::v1::Result result;
+  const auto status = pfem::client::fetch_result(stub, connection, id, &result);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return result.SerializeAsString();
+}
 
 // Polls GetJob until the job reaches `state` (or a finished state), at most `seconds`.
 inline pfem::v1::Job wait_for_state(pfem::v1::GradientService::Stub& stub, const std::string& id,

@@ -16,6 +16,7 @@
 
 #include "engine/analysis/run.h"
 #include "engine/io/model_io.h"
+#include "engine/io/model_size.h"
 
 namespace pfem {
 namespace {
@@ -75,6 +76,33 @@ TEST(ModelValidation, ZeroParticleSpacing) {
   auto m = valid_model();
   m.mutable_mesh()->set_h(0.0);
   expect_single_error(validate_model(m), "mesh.h", "must be > 0");
+}
+
+// Wall length / h, not the points, is what building costs: two points 1e57 m apart validated
+// and overflowed an int in the builder (found by the request fuzzer).
+TEST(ModelValidation, WallsOfTooManyNodes) {
+  auto m = valid_model();
+  EXPECT_EQ(count_wall_nodes(m), 100);  // the 0.2 m x 0.3 m box at h = 0.01
+  m.mutable_walls(0)->mutable_points(3)->set_y(-1.9e57);
+  EXPECT_EQ(count_wall_nodes(m), 1'000'000'000'000'000);
+  expect_single_error(validate_model(m), "mesh.h",
+                      "gives 1000000000000000 wall nodes (wall length / mesh.h), more than the "
+                      "100000 a model may have");
+}
+
+// A beam node 6.6e197 m away: the advice on the element count had cast that count to a long
+// (undefined behaviour, found by the request fuzzer).
+TEST(ModelValidation, ABeamTooLongForAnyElementCountSaysSo) {
+  auto m = read_model_file(source("examples/sloshing-beam.json"));
+  m.mutable_structure()->mutable_nodes(0)->set_x(6.6e197);
+  const auto errors = validate_model(m);
+  const auto it = std::find_if(errors.begin(), errors.end(), [](const FieldError& e) {
+    return e.path == "structure.beams[0].elements";
+  });
+  ASSERT_NE(it, errors.end()) << describe(errors);
+  EXPECT_NE(it->message.find("it would need more than the 10000 elements a beam may have"),
+            std::string::npos)
+      << it->message;
 }
 
 TEST(ModelValidation, BoundaryAlphaOutOfRange) {
@@ -233,6 +261,19 @@ TEST(ModelParsing, UnknownJsonFieldIsAnErrorNamingTheField) {
   } catch (const ModelError& e) {
     ASSERT_EQ(e.errors().size(), 1u);
     EXPECT_EQ(e.errors()[0].to_string(), "fluid.viscosity: unknown field of Fluid");
+  }
+}
+
+// A number beyond a double made the JSON diagnosis throw nlohmann's out_of_range, which no
+// caller expects (found by the model fuzzer: `pfem validate` would abort).
+TEST(ModelParsing, ANumberBeyondADoubleIsAFieldError) {
+  try {
+    parse_model_json(R"({"name": "x", "fluid": {"rho": 1000.0, "kappa": 2.1e555}})");
+    FAIL() << "parsed";
+  } catch (const ModelError& e) {
+    ASSERT_EQ(e.errors().size(), 1u);
+    EXPECT_EQ(e.errors()[0].path, "model");
+    EXPECT_EQ(e.errors()[0].message, "invalid JSON: number overflow parsing '2.1e555'");
   }
 }
 

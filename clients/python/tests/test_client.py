@@ -5,6 +5,7 @@ Run by ctest (python_client_test) with PYTHONPATH=build/python:clients/python an
 PFEM_SERVER=build/bin/pfem-server."""
 import importlib.util
 import io
+import json
 import os
 import shutil
 import signal
@@ -20,22 +21,10 @@ import numpy as np
 
 from pfem_client import Client, ServiceError, plot_histories
 
-TINY = {
-    "name": "tiny",
-    "fluid": {"rho": 1000.0, "mu": 0.001, "kappa": 2.15e9},
-    "mesh": {"h": 0.01},
-    "fluid_regions": [{"name": "water", "rectangle": {"min": {"x": 0.0, "y": 0.0},
-                                                      "max": {"x": 0.05, "y": 0.04}}}],
-    "walls": [{"name": "box", "closed": True, "points": [
-        {"x": 0.0, "y": 0.0}, {"x": 0.05, "y": 0.0}, {"x": 0.05, "y": 0.08}, {"x": 0.0, "y": 0.08}]}],
-    "analysis": {"dt": 0.002, "t_end": 0.01},
-    "recorders": [
-        {"name": "bottom_p", "quantity": "p", "point": {"x": 0.025, "y": 0.0}},
-        {"name": "fluid_area", "quantity": "fluid_area"},
-        {"name": "front_x", "quantity": "front_x"}],
-    "parameters": [{"name": "rho_f", "targets": ["fluid.rho"]},
-                   {"name": "kappa", "targets": ["fluid.kappa"]}],
-}
+# Still water in a small closed box: 5 x 4 particles, 5 steps of 2 ms.
+with open(os.path.join(os.environ["PFEM_SOURCE_DIR"], "tests", "data", "tiny.json"),
+          encoding="utf-8") as f:
+    TINY = json.load(f)
 TOKEN = "python-test-token"
 # The sloshing example is run to this time: the collapsing column reaches the beam by then.
 SLOSHING_T_END = 0.15
