@@ -76,6 +76,15 @@ void validate(std::span<const double> x, std::span<const double> y,
     throw std::invalid_argument("remesh: boundary_alpha must be finite and >= 0 (got " +
                                 std::to_string(options.boundary_alpha) + ")");
   }
+  if (!options.vx.empty() || !options.vy.empty()) {
+    if (options.vx.size() != x.size() || options.vy.size() != x.size())
+      throw std::invalid_argument("remesh: vx and vy must have one entry per node (got " +
+                                  std::to_string(options.vx.size()) + " and " + std::to_string(options.vy.size()) +
+                                  " for " + std::to_string(x.size()) + " nodes)");
+    if (!(std::isfinite(options.dt) && options.dt > 0.0))
+      throw std::invalid_argument("remesh: dt must be finite and > 0 with velocities (got " +
+                                  std::to_string(options.dt) + ")");
+  }
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (kind[i] != NodeKind::Removed && (!std::isfinite(x[i]) || !std::isfinite(y[i]))) {
       throw std::invalid_argument("remesh: node " + std::to_string(i) +

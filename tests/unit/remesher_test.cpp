@@ -896,4 +896,9 @@ TEST(Remesher, AGapBetweenSurfacesClosesOnlyWhereItsParticlesMoveAsWater) {
   EXPECT_EQ(remesh(1.0, 0.0, 1e-3, {}).size(), all.size());    // shear
   EXPECT_EQ(remesh(0.0, 0.0, 1e-3, {}).size(), all.size());    // at rest
   EXPECT_EQ(remesh(0.0, -1.0, 1e-3, all).size(), all.size());  // water already
+  EXPECT_THROW(remesh(0.0, 0.0, 0.0, {}), std::invalid_argument);  // velocities need a dt
+  RemeshOptions short_velocities{h, 1.2};
+  const std::vector<double> v(3, 0.0);
+  short_velocities.vx = v, short_velocities.vy = v, short_velocities.dt = 1e-3;
+  EXPECT_THROW(pfem::mesh::remesh(n.x, n.y, n.kind, short_velocities), std::invalid_argument);
 }
