@@ -238,18 +238,23 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
   };
   mesh.triangles.reserve(tri.number_of_faces());
   const bool gap_test = !options.vx.empty();
-  std::set<std::array<std::int32_t, 3>> previous;  // corners sorted
+  const auto boundary_particles = [&](const std::array<std::int32_t, 3>& t) {
+    for (const std::int32_t i : t)
+      if (kind[i] != NodeKind::Fluid || !was_boundary(i)) return false;
+    return true;
+  };
+  // The previous triangles that a gap test can ask about (corners sorted): a few, at the surface.
+  std::set<std::array<std::int32_t, 3>> previous;
   if (gap_test) {
     for (auto t : options.previous_triangles) {
+      if (!boundary_particles(t)) continue;
       std::sort(t.begin(), t.end());
       previous.insert(t);
     }
   }
   const auto spans_gap = [&](std::int32_t i0, std::int32_t i1, std::int32_t i2) {
-    if (!gap_test) return false;
-    for (const std::int32_t i : {i0, i1, i2})
-      if (kind[i] != NodeKind::Fluid || !was_boundary(i)) return false;
     std::array<std::int32_t, 3> sorted{i0, i1, i2};
+    if (!gap_test || !boundary_particles(sorted)) return false;
     std::sort(sorted.begin(), sorted.end());
     return previous.count(sorted) == 0;
   };
