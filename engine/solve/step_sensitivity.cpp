@@ -173,7 +173,8 @@ void UnifiedStep::commit_sensitivities(const StepSettings& s, NodeState& nodes) 
     for (int k = 0; k < num_params; ++k) {
       double* d = nodes.sensitivity(i, k);
       d[NodeState::kDp] = q >= 0 ? dp_(q, k) : 0.0;
-      if (dx < 0 && dy < 0) continue;
+      // A particle that hit a wall is taken out where it was (advance()): it keeps its state.
+      if ((dx < 0 && dy < 0) || hits_wall_[i]) continue;
       d[NodeState::kDvx] = dx >= 0 ? dv_(dx, k) : 0.0;
       d[NodeState::kDvy] = dy >= 0 ? dv_(dy, k) : 0.0;
       d[NodeState::kDx] += s.dt * d[NodeState::kDvx];

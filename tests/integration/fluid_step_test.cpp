@@ -3,6 +3,7 @@
 // stay still with the hydrostatic pressure rho g h at the bottom.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/analysis/run.h"
@@ -118,6 +119,41 @@ TEST(FluidStep, AParticleThatWouldCrossAWallOrBeamIsTakenOut) {
       for (const auto& row : r.responses.rows) EXPECT_LT(row[0], 0.16);  // front_x: none passed the beam
     }
   }
+}
+
+// A particle taken out where it hits the floor keeps its state of the step's start, and so do
+// its sensitivities (a later contact-line slide can still follow it: the response and the DDM
+// must see the same particle).
+TEST(FluidStep, AParticleTakenOutAtAWallKeepsItsSensitivities) {
+  auto model = thrown_sheet(false);
+  auto* p = model.add_parameters();
+  p->set_name("rho_f");
+  p->add_targets("fluid.rho");
+  const Problem pb = build_problem(model, {"rho_f"});
+  NodeState nodes = pb.nodes;
+  ASSERT_EQ(nodes.num_params, 1);
+  StepSettings s;
+  // 30 m/s: a sixteenth of the run's step lets Newton converge without the run's halving.
+  s.dt = pb.dt / 16, s.fluid = pb.fluid, s.thickness = pb.thickness, s.gx = pb.gx, s.gy = pb.gy;
+  s.walls = pb.wall_segments;
+  s.tolerance = pb.newton_tolerance, s.max_iterations = pb.newton_max_iterations;
+  s.sensitivity = pb.fluid_seeds;
+  UnifiedStep step;
+  int removed = 0;
+  for (int k = 0; k < 64 && removed == 0; ++k) {
+    const auto mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, {pb.h, pb.alpha, pb.gx, pb.gy, pb.wall_segments});
+    const NodeState before = nodes;
+    step.advance(mesh, s, nodes);
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      if (before.kind[i] != mesh::NodeKind::Fluid || nodes.kind[i] != mesh::NodeKind::Removed) continue;
+      ++removed;
+      EXPECT_EQ(nodes.x[i], before.x[i]);
+      EXPECT_EQ(nodes.y[i], before.y[i]);
+      for (int f = 0; f < NodeState::kSensitivityFields; ++f)
+        if (f != NodeState::kDp) EXPECT_EQ(nodes.sensitivity(i, 0)[f], before.sensitivity(i, 0)[f]) << i << " " << f;
+    }
+  }
+  EXPECT_GT(removed, 0);
 }
 
 // A step far too long for the flow (a 0.2 s step of a collapsing water column): Newton does not
