@@ -50,6 +50,7 @@ struct Problem {
   double removal_distance = 0.2;  // relative to h
   double insertion_length = 1.6;  // relative to h, edges with an end on the free surface
   double interior_insertion_length = 2.0;  // relative to h, edges inside the water
+  double volume_relaxation_steps = 10.0;  // mesh.volume_relaxation_steps (0: no volume correction)
   double dt = 0.0, t_end = 0.0;
   double newton_tolerance = 1e-10;
   int newton_max_iterations = 50;

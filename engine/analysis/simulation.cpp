@@ -212,6 +212,9 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
     record(0.0);
     if (vtk) vtk->write(0.0, nodes, mesh, model);
   }
+  // The volume correction (StepSettings::target_area): back to the initial area.
+  settings.target_area = sum.fluid_area_initial;
+  settings.volume_relaxation = problem.volume_relaxation_steps * problem.dt;
   const int first_step = sum.steps + 1;
   const double earlier_seconds = sum.wall_seconds;  // of the run before the restart
   const auto save_checkpoint = [&] {

@@ -267,6 +267,7 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
     pb.interior_insertion_length = model.mesh().interior_insertion_length();
   if (pb.interior_insertion_length == 0.0) pb.interior_insertion_length = pb.insertion_length;
   if (model.mesh().has_boundary_alpha()) pb.boundary_alpha = model.mesh().boundary_alpha();
+  if (model.mesh().has_volume_relaxation_steps()) pb.volume_relaxation_steps = model.mesh().volume_relaxation_steps();
   const auto& a = model.analysis();
   pb.dt = a.dt();
   pb.t_end = a.t_end();

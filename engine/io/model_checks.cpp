@@ -190,6 +190,11 @@ void ModelChecker::check_mesh() {
     if (!std::isfinite(a) || (a != 0.0 && (a < 0.6 || a > 3.0)))
       error("mesh.boundary_alpha", "must be 0 (same as alpha) or in [0.6, 3]");
   }
+  if (model_.mesh().has_volume_relaxation_steps()) {
+    const double n = model_.mesh().volume_relaxation_steps();
+    if (!std::isfinite(n) || (n != 0.0 && (n < 1.0 || n > 1000.0)))
+      error("mesh.volume_relaxation_steps", "must be 0 (off) or in [1, 1000]");
+  }
 }
 
 void ModelChecker::check_walls() {

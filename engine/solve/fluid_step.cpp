@@ -80,6 +80,21 @@ void UnifiedStep::number_unknowns(const mesh::FluidMesh& mesh, const NodeState& 
   n_v_ = n_node_v_ + 2 * static_cast<int>(mesh.triangles.size());
 }
 
+void UnifiedStep::volume_correction(const mesh::FluidMesh& mesh, const StepSettings& s) {
+  element_area_n_.resize(mesh.triangles.size());
+  area_n_ = 0.0;
+  for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
+    const auto& t = mesh.triangles[e];
+    element_area_n_[e] = 0.5 * ((xn_[t[1]] - xn_[t[0]]) * (yn_[t[2]] - yn_[t[0]]) -
+                                (xn_[t[2]] - xn_[t[0]]) * (yn_[t[1]] - yn_[t[0]]));
+    area_n_ += element_area_n_[e];
+  }
+  dilatation_ = s.target_area > 0.0 && s.volume_relaxation > 0.0 && area_n_ > 0.0
+                    ? (s.target_area / area_n_ - 1.0) / s.volume_relaxation
+                    : 0.0;
+  source_scale_ = dilatation_ * s.thickness / 3.0;
+}
+
 void UnifiedStep::element_terms(const mesh::FluidMesh& mesh, const StepSettings& s) {
   const int ne = static_cast<int>(mesh.triangles.size());
   geometries_.resize(ne);
@@ -142,6 +157,10 @@ void UnifiedStep::residuals(const mesh::FluidMesh& mesh) {
       if (dx >= 0) rv_[dx] += r.rv(2 * a);
       if (dy >= 0) rv_[dy] += r.rv(2 * a + 1);
       if (q >= 0) rp_[q] += r.rp(a), rp_abs_[q] += r.rp_abs(a), mp_[q] += r.mp;
+      if (q >= 0 && dilatation_ != 0.0) {
+        const double source = source_scale_ * element_area_n_[e];  // the dilatation's share of the corner
+        rp_[q] += source, rp_abs_[q] += std::abs(source);
+      }
     }
     const int b = n_node_v_ + 2 * e;
     rv_[b] += r.rv(6), rv_[b + 1] += r.rv(7);
@@ -525,6 +544,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy, pn_ = nodes.p;
   if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
   number_unknowns(mesh, nodes, s);
+  volume_correction(mesh, s);
   report.velocity_unknowns = n_v_;
   report.pressure_unknowns = n_p_;
 

@@ -84,6 +84,11 @@ struct StepSettings {
   // dropped, the approximation of the paper's baseline, kept only to show what it costs.
   std::span<const fluid::FluidSeed> sensitivity;
   bool geometric_terms = true;
+  // Volume correction (0, 0: none): the mass balance of every element gains the uniform
+  // dilatation (target_area / A_n - 1) / volume_relaxation [1/s], A_n the mesh's area at t_n, so
+  // that area a remeshing made or lost is returned to the water over about volume_relaxation.
+  double target_area = 0.0;        // [m^2]
+  double volume_relaxation = 0.0;  // [s]
 };
 
 struct StepReport {
@@ -151,6 +156,8 @@ class UnifiedStep {
   // part stays that of the last factorisation), unless that part barely changed; false when it
   // cannot be updated so.
   bool update_structure_tangent(const StepSettings& s);
+  // The volume correction's dilatation for this step, from the mesh's area at t_n.
+  void volume_correction(const mesh::FluidMesh& mesh, const StepSettings& s);
   // Every element's geometry and residual at the current iterate (in parallel).
   void element_terms(const mesh::FluidMesh& mesh, const StepSettings& s);
   // Every element's matrices at the geometry of the last element_terms (once per iterate).
@@ -204,6 +211,8 @@ class UnifiedStep {
   // per parameter; then the sensitivities committed to the nodes, the bubbles and the structure
   // (before the structure's own commit).
   void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
+  // d(area at t_n)/d(parameter k) of triangle t, from its corners' position sensitivities.
+  double area_sensitivity(const std::array<std::int32_t, 3>& t, const NodeState& nodes, int k) const;
   Eigen::VectorXd structure_sensitivity_rhs(const StepSettings& s, const NodeState& nodes, int k) const;
   void commit_sensitivities(const StepSettings& s, NodeState& nodes);
   // Newton corrections from the current residuals with the last factorisation.
@@ -220,6 +229,9 @@ class UnifiedStep {
   int n_node_v_ = 0, n_v_ = 0, n_p_ = 0;
   std::vector<double> xn_, yn_, vxn_, vyn_, pn_;  // state at t_n (per node)
   std::vector<std::uint8_t> hits_wall_;           // per node: hits a wall (check_admissible)
+  // Volume correction: the dilatation [1/s], the mesh's area at t_n and each element's area there.
+  double dilatation_ = 0.0, area_n_ = 0.0, source_scale_ = 0.0;
+  std::vector<double> element_area_n_;
   std::vector<Eigen::Vector2d> vbn_;                // bubble velocities at t_n (per element)
   // Bubble velocities of the last converged step, by the triangle's sorted node triple.
   std::unordered_map<std::uint64_t, Eigen::Vector2d> bubbles_by_triangle_;

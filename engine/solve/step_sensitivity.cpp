@@ -58,6 +58,17 @@ void UnifiedStep::factorize_jacobian() {
   jacobian_solver_.factorize(jacobian_);
 }
 
+double UnifiedStep::area_sensitivity(const std::array<std::int32_t, 3>& t, const NodeState& nodes, int k) const {
+  const double* d0 = nodes.sensitivity(t[0], k);
+  const double* d1 = nodes.sensitivity(t[1], k);
+  const double* d2 = nodes.sensitivity(t[2], k);
+  const double x1 = xn_[t[1]] - xn_[t[0]], y1 = yn_[t[1]] - yn_[t[0]];
+  const double x2 = xn_[t[2]] - xn_[t[0]], y2 = yn_[t[2]] - yn_[t[0]];
+  const double dx1 = d1[NodeState::kDx] - d0[NodeState::kDx], dy1 = d1[NodeState::kDy] - d0[NodeState::kDy];
+  const double dx2 = d2[NodeState::kDx] - d0[NodeState::kDx], dy2 = d2[NodeState::kDy] - d0[NodeState::kDy];
+  return 0.5 * (dx1 * y2 + x1 * dy2 - dx2 * y1 - x2 * dy1);
+}
+
 void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
   assemble_jacobian(mesh, s, s.geometric_terms);
   const int num_params = static_cast<int>(s.sensitivity.size());
@@ -67,6 +78,20 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
   Eigen::Matrix<double, 6, 1> dxn;
   fluid::Vec8 dvn;
   fluid::Vec3 dpn;
+  // The volume correction's dilatation (target / A_n - 1) / relaxation depends on the parameter
+  // through the mesh's area at t_n (the target is the initial area, which none moves); each
+  // corner's source dilatation * thickness * A_e / 3 through it and through A_e.
+  std::vector<double> darea_e;
+  Eigen::VectorXd ddilatation = Eigen::VectorXd::Zero(num_params);
+  if (dilatation_ != 0.0) {
+    darea_e.assign(static_cast<std::size_t>(ne) * num_params, 0.0);
+    for (int e = 0; e < ne; ++e)
+      for (int k = 0; k < num_params; ++k) {
+        darea_e[static_cast<std::size_t>(e) * num_params + k] = area_sensitivity(mesh.triangles[e], nodes, k);
+        ddilatation(k) += darea_e[static_cast<std::size_t>(e) * num_params + k];
+      }
+    ddilatation *= -s.target_area / (area_n_ * area_n_ * s.volume_relaxation);
+  }
   for (int e = 0; e < ne; ++e) {
     const auto& m = mats_[e];
     const auto& tri = mesh.triangles[e];
@@ -88,6 +113,11 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
             fluid::conditional_derivative(geometries_[e], m, s.fluid, s.thickness, s.dt, st, s.sensitivity[k]);
         sv += c.rv;
         sp += c.rp;
+      }
+      if (dilatation_ != 0.0) {
+        const double da = darea_e[static_cast<std::size_t>(e) * num_params + k];
+        sp.array() += s.sensitivity[k].thickness * dilatation_ * element_area_n_[e] / 3.0 +
+                      s.thickness / 3.0 * (ddilatation(k) * element_area_n_[e] + dilatation_ * da);
       }
       for (int a = 0; a < 3; ++a) {
         const int i = tri[a], dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];

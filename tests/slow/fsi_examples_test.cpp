@@ -45,8 +45,9 @@ TEST(FsiExamples, DamBreakObstacleRunsToOneSecondWithImpactNearPointFifteen) {
 }
 
 // Water at mu = 1e-3 splashes over the obstacle: the hardest run for the remeshing. The elastic
-// benchmark's first peak stays inside the published band (41-49 mm at 0.23-0.255 s; 44.5 mm at
-// 0.232 s) and the fluid area within 7 % over the whole second (6.4 %; the issue asks for 3 %).
+// benchmark's first peak stays inside the published band (41-49 mm at 0.23-0.255 s; 44.8 mm at
+// 0.239 s) and the fluid area within 3 % over the whole second, as the issue asks (1.3 % with the
+// volume correction; 6.4 % without, which the remeshing alone leaves).
 // Before gaps between surfaces closed only where their particles move as water does
 // (mesh::RemeshOptions::previous_triangles), the splash falling back on the pool made water of
 // the air it enclosed: +35 % by 1 s.
@@ -70,8 +71,8 @@ TEST(FsiExamples, DamBreakElasticObstacleRunsToOneSecond) {
   EXPECT_LT(peak, 0.049);
   EXPECT_GT(peak_time, 0.23);
   EXPECT_LT(peak_time, 0.255);
-  EXPECT_LT(drift_to_06, 0.07);
-  EXPECT_LT(r.summary.fluid_area_max_drift, 0.07);
+  EXPECT_LT(drift_to_06, 0.03);
+  EXPECT_LT(r.summary.fluid_area_max_drift, 0.03);
 }
 
 }  // namespace

@@ -29,10 +29,12 @@ TEST(ReliabilityObstacle, FormWithDdmConverges) {
   // 3.647 through the server in session 2, 3.600 after the boundary alpha, 3.379 with the
   // interior insertion length, 3.359 with the structure's tangent at every iterate; the
   // obstacle's own weight then raised its deflection by ~5 mm, and the threshold to 75 mm gives
-  // 2.772): a band, not a reference value.
+  // 2.772; the volume correction takes out the +1.2 % of water the column's front had gained by
+  // 0.2 s, the peak at the mean values goes 71.8 -> 71.4 mm and beta to 3.233): a band, not a
+  // reference value.
   const std::vector<double> x_star(r.form.x.data(), r.form.x.data() + r.form.x.size());
   EXPECT_LT(std::abs(g->evaluate(x_star, {})), 1e-3 * 0.075);
-  EXPECT_NEAR(r.form.beta, 2.77, 0.2);
+  EXPECT_NEAR(r.form.beta, 3.23, 0.2);
   // The yield stress drives the peak deflection: a weaker obstacle at the design point.
   EXPECT_LT(r.form.x(1), 5e4);
   EXPECT_GT(std::abs(r.form.alpha(1)), std::abs(r.form.alpha(0)));

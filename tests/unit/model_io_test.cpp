@@ -122,6 +122,16 @@ TEST(ModelValidation, InteriorInsertionLengthOutOfRange) {
   EXPECT_TRUE(validate_model(m).empty());
 }
 
+TEST(ModelValidation, VolumeRelaxationStepsOutOfRange) {
+  auto m = valid_model();
+  for (const double bad : {0.5, -1.0, 1001.0, std::nan("")}) {
+    m.mutable_mesh()->set_volume_relaxation_steps(bad);
+    expect_single_error(validate_model(m), "mesh.volume_relaxation_steps", "must be 0 (off) or in [1, 1000]");
+  }
+  m.mutable_mesh()->set_volume_relaxation_steps(0.0);
+  EXPECT_TRUE(validate_model(m).empty());
+}
+
 TEST(ModelValidation, FluidRegionOutsideEveryWall) {
   auto m = valid_model();
   auto* r = m.mutable_fluid_regions(0)->mutable_rectangle();
