@@ -2,8 +2,8 @@
 // Jobs on a bounded worker pool: a bounded FIFO queue of persisted jobs, plus a priority lane
 // for the synchronous Evaluate runs (not persisted). Cancellation, job timeouts and call
 // deadlines reach the engine through its cancel flag; progress reaches watchers through a
-// per-job snapshot that the engine's progress callback overwrites under a mutex (it never
-// waits for a watcher).
+// per-job snapshot that the engine's progress callback overwrites under a mutex, and a
+// listener told of every change (it never waits for a watcher: server/job_watchers.h).
 //
 // Lifecycle: start() re-queues what a previous server left QUEUED or RUNNING and starts the
 // workers; begin_drain() stops starting queued jobs and refuses new ones; stop(deadline) lets
@@ -43,11 +43,19 @@ class JobManager {
   // The engine entry point; tests may substitute a fake. Default: pfem::run.
   using RunFunction = std::function<RunResult(const pfem::v1::Model&, const RunOptions&)>;
 
+  // Told the id of a job after each change of what get() shows for it: `state_changed` is
+  // false for progress (at every step of a run, on the worker: it must be quick) and true for
+  // every other change. It may be called with the manager's locks held: it must not call the
+  // manager.
+  using ChangeListener = std::function<void(const std::string& id, bool state_changed)>;
+
   JobManager(Store& store, JobManagerOptions options, RunFunction run = {});
   ~JobManager();  // stop(now) when still running
   JobManager(const JobManager&) = delete;
   JobManager& operator=(const JobManager&) = delete;
 
+  // Before start().
+  void set_listener(ChangeListener listener);
   void start();
 
   // Queues an already validated request. Throws ServiceError: RESOURCE_EXHAUSTED when
@@ -62,11 +70,12 @@ class JobManager {
   // FAILED_PRECONDITION when it has finished.
   pfem::v1::Job cancel(const std::string& id);
 
-  // Waits up to `timeout` for the job's state to change after *version (progress alone
-  // shows at the timeout, waking no one), then returns it and sets *version. A finished job
-  // returns at once. Throws NOT_FOUND.
-  pfem::v1::Job wait_for_change(const std::string& id, std::uint64_t* version,
-                                std::chrono::milliseconds timeout);
+  // The job as get() shows it, and in *version a number that changes with it: bumped at
+  // every change while the job is queued or running here, kSettled once it has left the
+  // running jobs (finished, or stored by a server that could not store its end). Throws
+  // NOT_FOUND.
+  static constexpr std::uint64_t kSettled = ~std::uint64_t{0} - 1;
+  pfem::v1::Job observe(const std::string& id, std::uint64_t* version);
 
   // Runs a model on a worker ahead of the queued jobs and waits for the result. `should_stop`
   // is polled about every 20 ms while waiting; when it returns a code other than OK the run
@@ -89,6 +98,7 @@ class JobManager {
   void run_job(const std::shared_ptr<ActiveJob>& entry);
   void run_eval(const std::shared_ptr<EvalTask>& task);
   std::shared_ptr<ActiveJob> find_active(const std::string& id);
+  std::shared_ptr<ActiveJob> new_entry(const pfem::v1::Job& job);
   // Ends a job FAILED when its end could not be stored (store_failed) ...
   void store_failed(const std::shared_ptr<ActiveJob>& entry, pfem::v1::Job job,
                     const std::string& why);
@@ -98,6 +108,7 @@ class JobManager {
   Store& store_;
   const JobManagerOptions options_;
   RunFunction run_;
+  ChangeListener listener_;  // set before start(), then only read
 
   mutable std::mutex mutex_;
   std::condition_variable work_cv_;  // work queued, or stopping

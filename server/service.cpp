@@ -1,6 +1,7 @@
 #include "server/service.h"
 
 #include <chrono>
+#include <optional>
 
 #include "engine/io/model_io.h"
 #include "server/hashing.h"
@@ -9,8 +10,6 @@
 
 namespace pfem::server {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 bool finished(pfem::v1::JobState s) {
   return s == pfem::v1::JOB_STATE_SUCCEEDED || s == pfem::v1::JOB_STATE_FAILED ||
@@ -76,34 +75,20 @@ grpc::Status GradientService::SubmitJob(grpc::ServerContext* /*context*/,
   });
 }
 
-grpc::Status GradientService::WatchJob(grpc::ServerContext* context,
-                                       const pfem::v1::JobRequest* request,
-                                       grpc::ServerWriter<pfem::v1::Job>* writer) {
-  return handle([&] {
+grpc::ServerWriteReactor<pfem::v1::Job>* GradientService::WatchJob(
+    grpc::CallbackServerContext* context, const pfem::v1::JobRequest* request) {
+  if (draining_) {
+    return JobWatchers::refuse({grpc::StatusCode::UNAVAILABLE, "server is shutting down"});
+  }
+  std::optional<StreamSlots::Slot> slot;
+  const grpc::Status status = guarded([&] {
     require_job_id(*request);
-    const auto slot = streams_.acquire(context->peer());
-    constexpr auto kMinInterval = std::chrono::milliseconds(100);
-    std::uint64_t version = 0;
-    std::uint64_t sent_version = ~std::uint64_t{0};
-    auto last_sent = Clock::now() - kMinInterval;
-    for (;;) {
-      const auto job = jobs_.wait_for_change(request->job_id(), &version, kMinInterval);
-      if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "watch cancelled");
-      const bool done = finished(job.state());
-      // The final state always goes out: a job that finished and left the active list between
-      // two waits comes back from the store with the version of the last update sent.
-      if (done || (version != sent_version && Clock::now() - last_sent >= kMinInterval)) {
-        if (!writer->Write(job)) return grpc::Status(grpc::StatusCode::CANCELLED, "watcher left");
-        sent_version = version;
-        last_sent = Clock::now();
-      }
-      if (done) return grpc::Status::OK;
-      if (jobs_.draining()) {
-        return grpc::Status(grpc::StatusCode::UNAVAILABLE,
-                            "server is shutting down; the job is kept and resumes on restart");
-      }
-    }
+    slot.emplace(streams_.acquire(context->peer()));
+    jobs_.get(request->job_id());  // NOT_FOUND now, not from the stream
+    return grpc::Status::OK;
   });
+  if (!status.ok()) return JobWatchers::refuse(status);
+  return watchers_.watch(request->job_id(), std::move(*slot));
 }
 
 grpc::Status GradientService::GetJob(grpc::ServerContext* /*context*/,

@@ -2,14 +2,18 @@
 // pfem.v1.GradientService handlers (the port has authenticated the call before its request
 // was read: server/port_credentials.h). Each one is thin: check the request, call
 // the job manager / store / cache, convert the answer; errors are converted once by
-// guarded() (server/status.h), so no exception crosses into gRPC.
+// guarded() (server/status.h), so no exception crosses into gRPC. WatchJob is gRPC's callback
+// API (a reactor, no thread held while it waits: server/job_watchers.h); the others are
+// synchronous handlers.
 #include <grpcpp/grpcpp.h>
 
 #include <atomic>
+#include <chrono>
 #include <functional>
 
 #include "pfem/v1/service.grpc.pb.h"
 #include "server/evaluator.h"
+#include "server/job_watchers.h"
 #include "server/job_manager.h"
 #include "server/limits.h"
 #include "server/open_results.h"
@@ -19,24 +23,27 @@
 
 namespace pfem::server {
 
-class GradientService final : public pfem::v1::GradientService::Service {
+class GradientService final : public pfem::v1::GradientService::WithCallbackMethod_WatchJob<
+                                  pfem::v1::GradientService::Service> {
  public:
-  // All references must outlive the service.
+  // All references must outlive the service; construct it before jobs.start() (it listens to
+  // the job manager's changes) and destroy it after jobs.stop().
   GradientService(Store& store, JobManager& jobs, ResultCache& cache, const Limits& limits)
       : store_(store),
         jobs_(jobs),
         limits_(limits),
         evaluator_(store, jobs, cache, limits),
         streams_(limits.max_streams, limits.max_streams_per_client),
-        results_(store) {}
+        results_(store),
+        watchers_(jobs, kWatchInterval) {}
 
   grpc::Status ValidateModel(grpc::ServerContext* context,
                              const pfem::v1::ValidateModelRequest* request,
                              pfem::v1::ValidateModelResponse* response) override;
   grpc::Status SubmitJob(grpc::ServerContext* context, const pfem::v1::SubmitJobRequest* request,
                          pfem::v1::SubmitJobResponse* response) override;
-  grpc::Status WatchJob(grpc::ServerContext* context, const pfem::v1::JobRequest* request,
-                        grpc::ServerWriter<pfem::v1::Job>* writer) override;
+  grpc::ServerWriteReactor<pfem::v1::Job>* WatchJob(grpc::CallbackServerContext* context,
+                                                    const pfem::v1::JobRequest* request) override;
   grpc::Status GetJob(grpc::ServerContext* context, const pfem::v1::JobRequest* request,
                       pfem::v1::Job* response) override;
   grpc::Status GetResult(grpc::ServerContext* context, const pfem::v1::JobRequest* request,
@@ -52,11 +59,17 @@ class GradientService final : public pfem::v1::GradientService::Service {
 
   // Values per GetResult chunk message (8 bytes each).
   static constexpr int kChunkValues = 65536;
+  // A WatchJob stream is sent at most one message an interval (the final state at once).
+  static constexpr std::chrono::milliseconds kWatchInterval{100};
 
-  // From now on every new call gets UNAVAILABLE; calls already running go on.
-  void begin_drain() { draining_ = true; }
-  // Calls inside a handler right now.
-  int in_flight() const { return in_flight_.load(); }
+  // From now on every new call gets UNAVAILABLE; calls already running go on, but WatchJob
+  // streams of unfinished jobs end UNAVAILABLE.
+  void begin_drain() {
+    draining_ = true;
+    watchers_.begin_drain();
+  }
+  // Calls inside a handler right now, and WatchJob streams open.
+  int in_flight() const { return in_flight_.load() + static_cast<int>(watchers_.open()); }
 
  private:
   // Runs one handler body: refuses it while draining, counts it, converts errors (guarded).
@@ -68,6 +81,7 @@ class GradientService final : public pfem::v1::GradientService::Service {
   const Evaluator evaluator_;  // Evaluate (shared with the UM-Bridge endpoint)
   StreamSlots streams_;        // WatchJob and GetResult streams open
   OpenResults results_;        // the results GetResult streams are sending
+  JobWatchers watchers_;       // the WatchJob streams
   std::atomic<bool> draining_{false};
   std::atomic<int> in_flight_{0};
 };

@@ -292,8 +292,9 @@ std::optional<pfem::v1::SubmitJobRequest> Store::get_request(const std::string& 
   auto& q = prepare("SELECT request FROM jobs WHERE id = ?").bind(1, id);
   if (!q.step()) return std::nullopt;
   pfem::v1::SubmitJobRequest request;
-  if (!q.parse_blob(0, &request)) throw StoreError("corrupt request " + id);
-  q.reset();
+  const bool parsed = q.parse_blob(0, &request);
+  q.reset();  // before any throw: no read transaction stays open
+  if (!parsed) throw StoreError("corrupt request " + id);
   return request;
 }
 
@@ -302,8 +303,9 @@ std::optional<pfem::v1::Result> Store::get_result(const std::string& id) {
   auto& q = prepare("SELECT result FROM results WHERE job_id = ?").bind(1, id);
   if (!q.step()) return std::nullopt;
   pfem::v1::Result result;
-  if (!q.parse_blob(0, &result)) throw StoreError("corrupt result " + id);
-  q.reset();
+  const bool parsed = q.parse_blob(0, &result);
+  q.reset();  // before any throw: no read transaction stays open
+  if (!parsed) throw StoreError("corrupt result " + id);
   return result;
 }
 
@@ -418,8 +420,9 @@ std::optional<pfem::v1::Model> Store::get_model(const std::string& id) {
   auto& q = prepare("SELECT model FROM models WHERE id = ?").bind(1, id);
   if (!q.step()) return std::nullopt;
   pfem::v1::Model model;
-  if (!q.parse_blob(0, &model)) throw StoreError("corrupt model " + id);
-  q.reset();
+  const bool parsed = q.parse_blob(0, &model);
+  q.reset();  // before any throw: no read transaction stays open
+  if (!parsed) throw StoreError("corrupt model " + id);
   return model;
 }
 

@@ -1,5 +1,6 @@
 // The SQLite job store: round trips, state log, ordering, recovery after a restart, WAL.
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 
 #include <filesystem>
 #include <thread>
@@ -162,6 +163,39 @@ TEST(ServerStore, ModelsByIdAndConcurrentWriters) {
   }
   for (auto& th : threads) th.join();
   EXPECT_EQ(store.count_jobs(pfem::v1::JOB_STATE_RUNNING), 200);
+  fs::remove_all(dir);
+}
+
+
+// A blob that does not parse throws StoreError, and leaves no read transaction open on the
+// store's connection: a reader held there would keep every checkpoint from truncating the WAL
+// (it had, for a corrupt request, result or model, until that statement ran again).
+TEST(ServerStore, ACorruptBlobLeavesNoReadTransactionOpen) {
+  const fs::path dir = fresh_dir("corrupt_blob");
+  Store store(dir);
+  store.insert_job(make_job("j1", pfem::v1::JOB_STATE_QUEUED), make_request(1000.0));
+  store.finish_job(make_job("j1", pfem::v1::JOB_STATE_SUCCEEDED), nullptr);
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open((dir / "pfem.sqlite3").string().c_str(), &db), SQLITE_OK);
+  sqlite3_busy_timeout(db, 2000);
+  const auto exec = [&](const char* sql) {
+    return sqlite3_exec(db, sql, nullptr, nullptr, nullptr);
+  };
+  ASSERT_EQ(exec("UPDATE jobs SET request = x'ffffffff' WHERE id = 'j1'"), SQLITE_OK);
+  ASSERT_EQ(exec("INSERT INTO results (job_id, result) VALUES ('j1', x'ffffffff')"), SQLITE_OK);
+  ASSERT_EQ(exec("INSERT INTO models (id, created, model) VALUES ('m1', 0, x'ffffffff')"),
+            SQLITE_OK);
+  EXPECT_THROW(store.get_request("j1"), pfem::server::StoreError);
+  EXPECT_THROW(store.get_result("j1"), pfem::server::StoreError);
+  EXPECT_THROW(store.get_model("m1"), pfem::server::StoreError);
+  int log_frames = -1;
+  int checkpointed = -1;
+  EXPECT_EQ(sqlite3_wal_checkpoint_v2(db, nullptr, SQLITE_CHECKPOINT_TRUNCATE, &log_frames,
+                                      &checkpointed),
+            SQLITE_OK)
+      << sqlite3_errmsg(db);
+  EXPECT_EQ(log_frames, 0);  // the WAL truncated: no reader in the way
+  sqlite3_close(db);
   fs::remove_all(dir);
 }
 
