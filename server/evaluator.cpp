@@ -47,7 +47,9 @@ void Evaluator::evaluate(const pfem::v1::EvaluateRequest& request, const StopFun
   const pfem::v1::RunOptions& options = run.options;
   const std::string key = sha256_hex(canonical_bytes(run.model) + '\n' + canonical_bytes(options));
   const auto compute = [&] {
-    return jobs_.run_now(run.model, to_run_options(options, SensitivityMethod::kDdm), should_stop);
+    RunOptions engine_options = to_run_options(options, SensitivityMethod::kDdm);
+    engine_options.prepared = run.prepared;  // built once, by the checks
+    return jobs_.run_now(run.model, std::move(engine_options), should_stop);
   };
   bool hit = false;
   const auto result = request.no_cache() ? std::make_shared<const RunResult>(compute())

@@ -15,7 +15,8 @@ pfem::v1::Model check_run_request(
     pfem::v1::Model model,
     const google::protobuf::RepeatedPtrField<pfem::v1::ParameterValue>& values,
     const pfem::v1::RunOptions& options, const Limits& limits,
-    const std::string& options_prefix, std::vector<FieldError> more_errors) {
+    const std::string& options_prefix, std::vector<FieldError> more_errors,
+    std::shared_ptr<const PreparedRun>* prepared) {
   check_model_cost(model, limits);  // before validation, which grows with these counts
   auto errors = apply_parameter_values(model, values);
   for (auto& e : validate_model(model)) errors.push_back(std::move(e));
@@ -29,7 +30,15 @@ pfem::v1::Model check_run_request(
                    options.has_t_end() ? std::optional<double>(options.t_end()) : std::nullopt,
                    options.has_dt() ? std::optional<double>(options.dt()) : std::nullopt, limits);
   // What only building the model finds (within the limits, so the build is affordable).
-  if (auto build = model_errors(model); !build.empty()) throw_invalid(build);
+  try {
+    if (prepared) {
+      *prepared = prepare_run(model, to_run_options(options, SensitivityMethod::kDdm), /*validated=*/true);
+    } else {
+      build_validated_problem(model);
+    }
+  } catch (const ModelError& e) {
+    throw_invalid(e.errors());
+  }
   return model;
 }
 
@@ -78,7 +87,7 @@ EvaluateRun check_evaluate_request(const pfem::v1::EvaluateRequest& request,
   *options.mutable_params() = request.params();
   auto functional_errors = check_functionals(model, request.functionals());
   run.model = check_run_request(std::move(model), request.parameter_values(), options, limits,
-                                "", std::move(functional_errors));
+                                "", std::move(functional_errors), &run.prepared);
   return run;
 }
 

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "engine/analysis/blas_threads.h"
+#include "engine/base/assert.h"
 #include "engine/analysis/simulation.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
@@ -15,24 +16,18 @@
 
 namespace pfem {
 
+// The problem of one run (the DDM's seeds attached, the options' t_end and dt applied) and the
+// parameters it differentiates, as indices into problem.parameters.
+struct PreparedRun {
+  Problem problem;
+  std::vector<std::size_t> params;
+};
+
 namespace {
 
-// Options checked like model fields, with the flag's name as the path.
+// The options' own problems, then the parameters they name that the model does not have.
 void check_options(const RunOptions& o, const Problem& pb, std::vector<const ParameterSpec*>& chosen) {
-  std::vector<FieldError> errors;
-  if (o.t_end && !(std::isfinite(*o.t_end) && *o.t_end > 0)) errors.push_back({"t_end", "must be > 0"});
-  if (o.dt && !(std::isfinite(*o.dt) && *o.dt > 0)) errors.push_back({"dt", "must be > 0"});
-  if (o.vtk_every && *o.vtk_every < 1) errors.push_back({"vtk_every", "must be >= 1"});
-  if (o.threads < 1 || o.threads > kMaxThreads)
-    errors.push_back({"threads", "must be in [1, " + std::to_string(kMaxThreads) + "]"});
-  if (!(std::isfinite(o.fdm_eps) && o.fdm_eps > 0 && o.fdm_eps < 0.1))
-    errors.push_back({"fdm_eps", "must be in (0, 0.1)"});
-  if (o.checkpoint_every < 0) errors.push_back({"checkpoint_every", "must be >= 0"});
-  if (o.checkpoint_every > 0 && o.checkpoint_file.empty())
-    errors.push_back({"checkpoint_file", "is needed with checkpoint_every"});
-  if (o.sensitivity == SensitivityMethod::kFdm && (o.checkpoint_every > 0 || !o.restart_from.empty()))
-    errors.push_back({o.checkpoint_every > 0 ? "checkpoint_every" : "restart_from",
-                      "checkpoints are for runs without sensitivities or with the DDM (an FDM run is 2P + 1 runs)"});
+  std::vector<FieldError> errors = o.validate();
   if (o.sensitivity != SensitivityMethod::kNone) {
     std::set<std::string> seen;
     for (const auto& name : o.params) {
@@ -52,7 +47,25 @@ void check_options(const RunOptions& o, const Problem& pb, std::vector<const Par
 
 // The parameter called name (checked to exist: an option or a validated direction names it).
 const ParameterSpec& spec_of(const Problem& pb, const std::string& name) {
-  return *std::find_if(pb.parameters.begin(), pb.parameters.end(), [&](const auto& p) { return p.name == name; });
+  const auto p = std::find_if(pb.parameters.begin(), pb.parameters.end(), [&](const auto& q) { return q.name == name; });
+  PFEM_ASSERT(p != pb.parameters.end(), "a checked parameter name is in the problem");
+  return *p;
+}
+
+// The names the DDM seeds: the options' parameters that the model has (once each, in their
+// order; check_options reports the others), or every parameter of the model.
+std::vector<std::string> ddm_names(const pfem::v1::Model& model, const RunOptions& o) {
+  std::vector<std::string> names;
+  if (o.sensitivity != SensitivityMethod::kDdm) return names;
+  const auto known = [&](const std::string& name) {
+    return std::any_of(model.parameters().begin(), model.parameters().end(),
+                       [&](const auto& p) { return p.name() == name; });
+  };
+  for (const auto& name : o.params)
+    if (known(name) && std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  if (o.params.empty())
+    for (const auto& p : model.parameters()) names.push_back(p.name());
+  return names;
 }
 
 // The FDM step of a parameter: eps |value| (eps when the value is 0); of a directional one, the
@@ -147,24 +160,29 @@ const char* method_name(SensitivityMethod m) {
   return m == SensitivityMethod::kDdm ? "ddm" : m == SensitivityMethod::kFdm ? "fdm" : "none";
 }
 
-RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
-  keep_blas_in_calling_thread();  // bit-identical results beside other runs and in any program
-  Problem problem = build_problem(model);
+std::shared_ptr<const PreparedRun> prepare_run(const pfem::v1::Model& model, const RunOptions& options,
+                                               bool validated) {
+  auto prepared = std::make_shared<PreparedRun>();
+  Problem& problem = prepared->problem;
+  const std::vector<std::string> seeded = ddm_names(model, options);
+  problem = validated ? build_validated_problem(model, seeded) : build_problem(model, seeded);
   std::vector<const ParameterSpec*> params;
   check_options(options, problem, params);
+  for (const auto* p : params) prepared->params.push_back(static_cast<std::size_t>(p - problem.parameters.data()));
   if (options.t_end) problem.t_end = *options.t_end;
   if (options.dt) problem.dt = *options.dt;
   if (problem.dt > problem.t_end) throw ModelError("dt", "must not exceed t_end");
   if (const std::string why = too_many_steps(problem.t_end, problem.dt, "dt"); !why.empty())
     throw ModelError("t_end", why);
+  return prepared;
+}
 
-  std::optional<Problem> with_seeds;  // DDM: the problem with the parameters' seeds
-  if (options.sensitivity == SensitivityMethod::kDdm) {
-    std::vector<std::string> names;
-    for (const auto* p : params) names.push_back(p->name);
-    with_seeds = build_problem(model, names);
-    with_seeds->t_end = problem.t_end, with_seeds->dt = problem.dt;
-  }
+RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
+  keep_blas_in_calling_thread();  // bit-identical results beside other runs and in any program
+  const std::shared_ptr<const PreparedRun> prepared = options.prepared ? options.prepared : prepare_run(model, options);
+  const Problem& problem = prepared->problem;
+  std::vector<const ParameterSpec*> params;
+  for (const std::size_t k : prepared->params) params.push_back(&problem.parameters[k]);
 
   Checkpointing checkpoints{options.checkpoint_file, options.checkpoint_every, checkpointed_run(model, options)};
   std::optional<Checkpoint> restart;
@@ -174,7 +192,7 @@ RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
     checkpoints.restore = &restart->state;
   }
   RunResult result;
-  SimulationOutput sim = simulate(with_seeds ? *with_seeds : problem, options, &checkpoints);
+  SimulationOutput sim = simulate(problem, options, &checkpoints);
   result.responses = std::move(sim.responses);
   result.sensitivities = std::move(sim.sensitivities);
   result.summary = sim.summary;

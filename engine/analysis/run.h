@@ -7,13 +7,17 @@
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "engine/base/field_error.h"
 #include "pfem/v1/model.pb.h"
 
 namespace pfem {
+
+struct PreparedRun;  // a model validated and built for one run (prepare_run)
 
 enum class SensitivityMethod { kNone, kDdm, kFdm };
 const char* method_name(SensitivityMethod m);  // "none", "ddm", "fdm"
@@ -55,6 +59,13 @@ struct RunOptions {
   // stopped; the model and the options above the progress callback must be the checkpointed
   // run's (else CheckpointError, as for a checkpoint of another engine build).
   std::filesystem::path restart_from;
+  // The model already built for a run with these options (prepare_run of the same model and
+  // options, e.g. by a service that builds it to check it); empty: run() builds it.
+  std::shared_ptr<const PreparedRun> prepared;
+
+  // Every problem of these options by themselves, the flag's name as the path ("t_end: must
+  // be > 0"); the parameter names are checked against the model by run().
+  std::vector<FieldError> validate() const;
 };
 
 enum class RunStatus { kCompleted, kFailed, kCancelled };
@@ -108,5 +119,11 @@ struct RunResult {
 // invalid, CheckpointError (engine/state/state_archive.h) for a restart_from it cannot continue; a simulation failure (Newton divergence, a particle leaving the domain) does not
 // throw: it returns status kFailed with the step, time and reason and the partial histories.
 RunResult run(const pfem::v1::Model& model, const RunOptions& options);
+
+// What run() does before simulating, once: validates the model (unless validated: validate_model
+// passed it already), builds it with the DDM's seeds for the parameters the options name, and
+// checks the options against it. Throws ModelError as run() does.
+std::shared_ptr<const PreparedRun> prepare_run(const pfem::v1::Model& model, const RunOptions& options,
+                                               bool validated = false);
 
 }  // namespace pfem

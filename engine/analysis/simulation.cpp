@@ -93,8 +93,7 @@ int advance_adaptive(const Problem& problem, UnifiedStep& step, mesh::FluidMesh&
     step.advance(mesh, settings, nodes, cancel);
     add_work(sum, step.last_report());
     return step.last_report().iterations;
-  } catch (const StepFailure& e) {
-    if (std::getenv("PFEM_DEBUG_HALVING")) std::fprintf(stderr, "halve depth %d dt %g: %s\n", depth, settings.dt, e.what());
+  } catch (const StepFailure&) {
     add_work(sum, step.last_report());
     if (depth == kMaxHalvings) throw;
   }

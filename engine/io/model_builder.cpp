@@ -246,7 +246,7 @@ std::vector<FieldError> model_errors(const pfem::v1::Model& model) {
   auto errors = validate_model(model);
   if (!errors.empty()) return errors;
   try {
-    build_problem(model);
+    build_validated_problem(model);
   } catch (const ModelError& e) {
     return e.errors();
   }
@@ -255,6 +255,10 @@ std::vector<FieldError> model_errors(const pfem::v1::Model& model) {
 
 Problem build_problem(const pfem::v1::Model& model, const std::vector<std::string>& sensitivity_params) {
   if (auto errors = validate_model(model); !errors.empty()) throw ModelError(std::move(errors));
+  return build_validated_problem(model, sensitivity_params);
+}
+
+Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<std::string>& sensitivity_params) {
   Problem pb;
   pb.fluid = {model.fluid().rho(), model.fluid().mu(), model.fluid().kappa()};
   pb.thickness = model.has_thickness() ? model.thickness() : 1.0;
@@ -297,7 +301,7 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
   }
   std::map<std::string, int> structure_node_by_name, element_by_name;
   if (model.has_structure()) {
-    StructureBuild sb = build_structure(with_values, sensitivity_targets);
+    StructureBuild sb = build_structure(with_values, sensitivity_targets, /*validated=*/true);
     for (int k = 0; k < sb.model.num_nodes(); ++k) {
       const auto& node = sb.model.node(k);
       pb.structure_nodes.push_back(pb.nodes.add(node.x(0), node.x(1), NodeKind::Structure));

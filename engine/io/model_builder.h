@@ -15,6 +15,11 @@ namespace pfem {
 // sensitivity storage on the nodes); the caller checks that they exist.
 Problem build_problem(const pfem::v1::Model& model, const std::vector<std::string>& sensitivity_params = {});
 
+// build_problem of a model that validate_model has passed already (it is not validated again);
+// throws ModelError for what only building finds.
+Problem build_validated_problem(const pfem::v1::Model& model,
+                                const std::vector<std::string>& sensitivity_params = {});
+
 // Every problem with the model: validate_model's, or when it passes, what building it finds
 // (a fluid region with no particle clear of the walls, a domain that leaves out a node).
 std::vector<FieldError> model_errors(const pfem::v1::Model& model);

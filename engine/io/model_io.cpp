@@ -16,20 +16,6 @@
 namespace pfem {
 
 namespace {
-std::string join_errors(const std::vector<FieldError>& errors) {
-  std::string out;
-  for (const auto& e : errors) {
-    if (!out.empty()) out += '\n';
-    out += e.to_string();
-  }
-  return out;
-}
-}  // namespace
-
-ModelError::ModelError(std::vector<FieldError> errors)
-    : std::runtime_error(join_errors(errors)), errors_(std::move(errors)) {}
-
-namespace {
 
 using google::protobuf::Descriptor;
 using google::protobuf::FieldDescriptor;

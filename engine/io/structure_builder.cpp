@@ -212,8 +212,9 @@ void apply_parameter_overrides(pfem::v1::Model& model) {
 }
 
 StructureBuild build_structure(const pfem::v1::Model& model,
-                               const std::vector<std::vector<SeedTarget>>& sensitivity_targets) {
-  if (auto errors = validate_structure(model); !errors.empty()) throw ModelError(std::move(errors));
+                               const std::vector<std::vector<SeedTarget>>& sensitivity_targets, bool validated) {
+  if (!validated)
+    if (auto errors = validate_structure(model); !errors.empty()) throw ModelError(std::move(errors));
   StructureBuild out;
   if (!model.has_structure()) return out;
   const auto& st = model.structure();

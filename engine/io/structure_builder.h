@@ -50,8 +50,10 @@ struct StructureBuild {
 // up; derived constants follow, e.g. A = b d and I = b d^3/12 of an elastic beam built from a
 // rectangle); "fluid.*" and "thickness" are ignored. The model is then sized for
 // P = sensitivity_targets.size() parameters. Errors at "sensitivity_targets[k][j]".
+// validated: validate_model (or validate_structure) has passed the model already.
 StructureBuild build_structure(const pfem::v1::Model& model,
-                               const std::vector<std::vector<SeedTarget>>& sensitivity_targets = {});
+                               const std::vector<std::vector<SeedTarget>>& sensitivity_targets = {},
+                               bool validated = false);
 
 // The current value of a parameter target (thickness: 1 when absent; material e: E of an
 // elastic material, E0 of a bilinear one). Throws ModelError at `path` for a target of an
