@@ -20,7 +20,7 @@
 #include "engine/cli/arguments.h"
 #include "engine/io/model_io.h"
 #include "server/functional.h"
-#include "server/server.h"
+#include "bench/service/bench_server.h"
 
 namespace {
 
@@ -95,21 +95,10 @@ int main(int argc, char** argv) {
     const double t_end = a.take_double("--t-end").value_or(0.01);
     a.expect_done(0);
 
-    std::unique_ptr<pfem::server::Server> server;
-    std::filesystem::path data_dir;
-    std::string address;
-    if (server_address) {
-      address = *server_address;
-    } else {
-      data_dir = std::filesystem::temp_directory_path() /
-                 ("pfem_bench_service_" + std::to_string(::getpid()));
-      pfem::server::ServerOptions options;
-      options.listen = "127.0.0.1:0";
-      options.data_dir = data_dir;
-      options.workers = workers;
-      server = std::make_unique<pfem::server::Server>(options);
-      address = server->address();
-    }
+    pfem::server::ServerOptions options;
+    options.workers = workers;
+    const pfem::bench::BenchServer server(server_address, "pfem_bench_service", options);
+    const std::string& address = server.address();
 
     pfem::v1::EvaluateRequest request;
     *request.mutable_model() = pfem::read_model_file(model_file);
@@ -126,7 +115,7 @@ int main(int argc, char** argv) {
 
     std::printf("service load: %s, model %s (t_end %g s, FDM), %s\n", address.c_str(),
                 std::filesystem::path(model_file).filename().c_str(), t_end,
-                server ? ("in-process server, " + std::to_string(workers) + " workers").c_str()
+                server.in_process() ? ("in-process server, " + std::to_string(workers) + " workers").c_str()
                        : "external server");
     std::printf("%-18s %7s %7s %9s %10s %9s %9s %7s\n", "case", "clients", "calls", "wall[s]",
                 "calls/s", "p50[ms]", "p99[ms]", "errors");
@@ -143,8 +132,6 @@ int main(int argc, char** argv) {
       errors += row.errors;
     }
     std::fflush(stdout);
-    server.reset();
-    if (!data_dir.empty()) std::filesystem::remove_all(data_dir);
     return errors ? 1 : 0;
   } catch (const std::exception& e) {
     std::cerr << "pfem-bench-service: " << e.what() << '\n';

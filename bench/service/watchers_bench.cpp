@@ -28,7 +28,7 @@
 #include "clients/cli/client.h"
 #include "engine/cli/arguments.h"
 #include "engine/io/model_io.h"
-#include "server/server.h"
+#include "bench/service/bench_server.h"
 
 namespace {
 
@@ -167,25 +167,14 @@ int main(int argc, char** argv) {
     const int repeat = a.take_int("--repeat").value_or(3);
     a.expect_done(0);
 
-    std::unique_ptr<pfem::server::Server> server;
-    std::filesystem::path data_dir;
-    std::string address;
-    if (server_address) {
-      address = *server_address;
-    } else {
-      data_dir = std::filesystem::temp_directory_path() /
-                 ("pfem_bench_watchers_" + std::to_string(::getpid()));
-      pfem::server::ServerOptions options;
-      options.listen = "127.0.0.1:0";
-      options.data_dir = data_dir;
-      options.workers = 1;
-      const int most = *std::max_element(counts.begin(), counts.end());
-      options.limits.max_streams = std::max(1, most);
-      options.limits.max_streams_per_client = std::max(1, most);
-      server = std::make_unique<pfem::server::Server>(options);
-      address = server->address();
-      pid = "self";
-    }
+    pfem::server::ServerOptions options;
+    options.workers = 1;
+    const int most = *std::max_element(counts.begin(), counts.end());
+    options.limits.max_streams = std::max(1, most);
+    options.limits.max_streams_per_client = std::max(1, most);
+    const pfem::bench::BenchServer server(server_address, "pfem_bench_watchers", options);
+    if (server.in_process()) pid = "self";
+    const std::string& address = server.address();
     pfem::client::ConnectionOptions connection;
     connection.server = address;
     auto stub = pfem::v1::GradientService::NewStub(pfem::client::make_channel(connection));
@@ -195,7 +184,7 @@ int main(int argc, char** argv) {
 
     std::printf("watchers: %s, model %s to t = %g s, %s\n", address.c_str(),
                 std::filesystem::path(model_file).filename().c_str(), t_end,
-                server ? "in-process server (1 worker; threads: the whole process)"
+                server.in_process() ? "in-process server (1 worker; threads: the whole process)"
                        : "external server");
     std::map<int, std::vector<double>> rates;
     std::map<int, int> threads;
@@ -230,8 +219,6 @@ int main(int argc, char** argv) {
                   v.empty() ? 0.0 : *std::min_element(v.begin(), v.end()), threads[n]);
     }
     std::fflush(stdout);
-    server.reset();
-    if (!data_dir.empty()) std::filesystem::remove_all(data_dir);
     return errors ? 1 : 0;
   } catch (const std::exception& e) {
     std::cerr << "pfem-bench-watchers: " << e.what() << '\n';

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/analysis/recorders.h"
 #include "engine/analysis/run.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
@@ -89,13 +90,7 @@ TEST(FluidStep, TheVolumeCorrectionReturnsAFixedFractionOfTheMissingAreaEachStep
   StepSettings s;
   s.dt = pb.dt, s.fluid = pb.fluid, s.thickness = pb.thickness, s.gx = pb.gx, s.gy = pb.gy;
   UnifiedStep step;
-  const auto area = [&nodes](const mesh::FluidMesh& mesh) {
-    double twice = 0.0;
-    for (const auto& t : mesh.triangles)
-      twice += (nodes.x[t[1]] - nodes.x[t[0]]) * (nodes.y[t[2]] - nodes.y[t[0]]) -
-               (nodes.x[t[2]] - nodes.x[t[0]]) * (nodes.y[t[1]] - nodes.y[t[0]]);
-    return 0.5 * twice;
-  };
+  const auto area = [&nodes](const mesh::FluidMesh& mesh) { return fluid_area(mesh, nodes); };
   const mesh::FluidMesh mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, {pb.h, pb.alpha, pb.gx, pb.gy});
   const double a0 = area(mesh);
   s.target_area = 1.01 * a0;
