@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 
+#include "engine/analysis/moving_walls.h"
 #include "engine/analysis/recorders.h"
 #include "engine/analysis/run_state.h"
 #include "engine/mesh/particle_spacing.h"
@@ -42,35 +43,61 @@ void add_work(RunSummary& sum, const StepReport& r) {
 }
 
 // The wall nodes at the contact lines of previous slide to them, every other sliding node goes
-// home (mesh/contact_line.h); a slid node's position follows its particle's, and so does its
-// position sensitivity: the tangential part of the particle's.
-void slide_walls(const Problem& problem, const mesh::FluidMesh& previous, NodeState& nodes) {
-  for (const auto& s : problem.sliding_walls) {
+// home (mesh/contact_line.h), both as the walls are at time t; a slid node's position follows
+// its particle's along the wall, and so does its position sensitivity: with home h, tangent u and
+// offset o = (p - h).u, the node h + o u has the derivative dh + ((dp - dh).u + (p - h).du) u + o du.
+void slide_walls(const Problem& problem, const mesh::FluidMesh& previous, NodeState& nodes, double t) {
+  const int P = nodes.num_params;
+  std::vector<std::array<double, 4>> dwall;  // per sliding node and parameter: d(home_x, home_y, tx, ty)
+  const auto sliding = sliding_walls_at(problem, P, t, dwall);
+  for (std::size_t j = 0; j < sliding.size(); ++j) {
+    const auto& s = sliding[j];
     nodes.x[s.node] = s.home_x, nodes.y[s.node] = s.home_y;
-    for (int k = 0; k < nodes.num_params; ++k)
-      nodes.sensitivity(s.node, k)[NodeState::kDx] = nodes.sensitivity(s.node, k)[NodeState::kDy] = 0.0;
+    for (int k = 0; k < P; ++k) {
+      nodes.sensitivity(s.node, k)[NodeState::kDx] = dwall[j * P + k][0];
+      nodes.sensitivity(s.node, k)[NodeState::kDy] = dwall[j * P + k][1];
+    }
   }
-  for (const auto& slide : mesh::contact_line_slides(previous, nodes.x, nodes.y, problem.sliding_walls,
-                                                      problem.wall_neighbours)) {
-    const mesh::SlidingWallNode& s = problem.sliding_walls[slide.index];
-    const double tx = s.tx, ty = s.ty;
-    nodes.x[s.node] = s.home_x + slide.offset * tx;
-    nodes.y[s.node] = s.home_y + slide.offset * ty;
-    for (int k = 0; k < nodes.num_params; ++k) {
+  for (const auto& slide : mesh::contact_line_slides(previous, nodes.x, nodes.y, sliding, problem.wall_neighbours)) {
+    const mesh::SlidingWallNode& s = sliding[slide.index];
+    const double tx = s.tx, ty = s.ty, o = slide.offset;
+    nodes.x[s.node] = s.home_x + o * tx;
+    nodes.y[s.node] = s.home_y + o * ty;
+    for (int k = 0; k < P; ++k) {
       const double* dp = nodes.sensitivity(slide.particle, k);
+      const auto& [dhx, dhy, dtx, dty] = dwall[static_cast<std::size_t>(slide.index) * P + k];
+      const double along = (dp[NodeState::kDx] - dhx) * tx + (dp[NodeState::kDy] - dhy) * ty +
+                           (nodes.x[slide.particle] - s.home_x) * dtx + (nodes.y[slide.particle] - s.home_y) * dty;
       double* dw = nodes.sensitivity(s.node, k);
-      const double along = dp[NodeState::kDx] * tx + dp[NodeState::kDy] * ty;
-      dw[NodeState::kDx] = along * tx, dw[NodeState::kDy] = along * ty;
+      dw[NodeState::kDx] = dhx + along * tx + o * dtx, dw[NodeState::kDy] = dhy + along * ty + o * dty;
     }
   }
 }
 
+// Triangulates the nodes as they are (under a moving wall, see clear_under_moving_walls).
+mesh::FluidMesh remesh_nodes(const Problem& problem, const NodeState& nodes, mesh::RemeshOptions options) {
+  if (problem.moving_walls.empty()) return mesh::remesh(nodes.x, nodes.y, nodes.kind, options);
+  std::vector<mesh::NodeKind> kind = nodes.kind;
+  std::vector<std::array<std::int32_t, 2>> constraints = options.constraints;
+  clear_under_moving_walls(problem, nodes, kind, constraints);
+  options.constraints = std::move(constraints);
+  return mesh::remesh(nodes.x, nodes.y, kind, options);
+}
+
 // Remeshes nodes after the step that used previous for a step of dt (see
 // RemeshOptions::previous_boundary, previous_triangles), with the wall nodes slid to its contact
-// lines first.
+// lines first (t: the time now).
 mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& previous, NodeState& nodes,
-                             mesh::RemeshOptions options, double dt) {
-  slide_walls(problem, previous, nodes);
+                             mesh::RemeshOptions options, double dt, double t) {
+  slide_walls(problem, previous, nodes, t);
+  // A slip wall's node out of the water keeps no velocity: one it had when last wet (or next to a
+  // paddle that then stood over it) would be an impulse on the water that reaches it again.
+  for (std::size_t i = 0; i < problem.wall_slip.size() && i < previous.in_mesh.size(); ++i) {
+    if (problem.wall_slip[i] == 0 || previous.in_mesh[i] || problem.moves(i)) continue;
+    nodes.vx[i] = nodes.vy[i] = 0.0;
+    for (int k = 0; k < nodes.num_params; ++k)
+      nodes.sensitivity(i, k)[NodeState::kDvx] = nodes.sensitivity(i, k)[NodeState::kDvy] = 0.0;
+  }
   std::vector<std::uint8_t> boundary(previous.free_surface.size());
   for (std::size_t i = 0; i < boundary.size(); ++i)
     boundary[i] = previous.free_surface[i] || (nodes.kind[i] == mesh::NodeKind::Fluid && !previous.in_mesh[i]);
@@ -78,19 +105,24 @@ mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& prev
   options.previous_triangles = previous.triangles;
   options.vx = nodes.vx, options.vy = nodes.vy;
   options.dt = dt;
-  return mesh::remesh(nodes.x, nodes.y, nodes.kind, options);
+  return remesh_nodes(problem, nodes, options);
 }
 
 // Advances nodes by dt on mesh; when Newton fails (typically a sliver that inverts within the
 // step), retries as two half steps, removing too close particles (as between steps; see
-// particle_spacing.h) and remeshing in between. Returns the Newton iterations of the
-// last attempt; the work of every attempt, failed ones included, goes into sum.
+// particle_spacing.h) and remeshing in between. t: the time at its start (moving walls take
+// their velocities over the step from it). Returns the Newton iterations of the last attempt;
+// the work of every attempt, failed ones included, goes into sum.
 int advance_adaptive(const Problem& problem, UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings settings,
-                     const mesh::RemeshOptions& remesh_options, NodeState& nodes,
+                     const mesh::RemeshOptions& remesh_options, NodeState& nodes, double t,
                      double removal_distance, const std::atomic<bool>* cancel, RunSummary& sum,
                      int depth = 0) {
   try {
+    const WallKinematics walls = wall_kinematics(problem, nodes, t, t + settings.dt);
+    settings.wall_velocity = walls.velocity;
+    settings.wall_velocity_sensitivity = walls.sensitivity;
     step.advance(mesh, settings, nodes, cancel);
+    place_moving_walls(problem, t + settings.dt, walls, nodes);
     add_work(sum, step.last_report());
     return step.last_report().iterations;
   } catch (const StepFailure&) {
@@ -105,11 +137,11 @@ int advance_adaptive(const Problem& problem, UnifiedStep& step, mesh::FluidMesh&
       const auto t0 = Clock::now();
       // Particles squeezed together in the first half would only come closer in a shorter step.
       sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind, removal_distance);
-      mesh = remesh_after(problem, mesh, nodes, remesh_options, settings.dt);
+      mesh = remesh_after(problem, mesh, nodes, remesh_options, settings.dt, t + settings.dt);
       sum.remesh_seconds += since(t0);
     }
-    iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, nodes, removal_distance, cancel, sum,
-                                  depth + 1);
+    iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, nodes, t + half * settings.dt,
+                                  removal_distance, cancel, sum, depth + 1);
   }
   return iterations;
 }
@@ -201,10 +233,11 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
     if (!a.at_end()) throw CheckpointError("checkpoint: its state is longer than this problem's");
   } else {
     auto t0 = Clock::now();
-    mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
+    place_moving_walls(problem, 0.0, {}, nodes);
+    mesh = remesh_nodes(problem, nodes, remesh_options);
     if (!problem.sliding_walls.empty()) {
-      slide_walls(problem, mesh, nodes);
-      mesh = mesh::remesh(nodes.x, nodes.y, nodes.kind, remesh_options);
+      slide_walls(problem, mesh, nodes, 0.0);
+      mesh = remesh_nodes(problem, nodes, remesh_options);
     }
     sum.remesh_seconds += since(t0);
     sum.fluid_area_initial = sum.fluid_area_final = fluid_area(mesh, nodes);
@@ -237,10 +270,10 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
     try {
       if (n > 1) {  // the step-1 mesh is the initial one
         const auto t0 = Clock::now();
-        mesh = remesh_after(problem, mesh, nodes, remesh_options, settings.dt);
+        mesh = remesh_after(problem, mesh, nodes, remesh_options, settings.dt, time_of(n - 1));
         sum.remesh_seconds += since(t0);
       }
-      const int iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, nodes,
+      const int iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, nodes, time_of(n - 1),
                                               problem.removal_distance * problem.h, options.cancel, sum);
       sum.max_elements = std::max<int>(sum.max_elements, static_cast<int>(mesh.triangles.size()));
       sum.steps = n;

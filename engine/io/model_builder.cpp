@@ -8,6 +8,7 @@
 #include "engine/io/geometry_bounds.h"
 #include "engine/io/model_checks.h"
 #include "engine/io/model_io.h"
+#include "engine/io/motion_builder.h"
 #include "engine/io/structure_builder.h"
 
 namespace pfem {
@@ -33,24 +34,56 @@ double distance_to_segment(double px, double py, const Segment& s) {
 // piece in nodes' segment list.
 // The nodes inside a straight piece that no other wall shares slide along it (mesh::SlidingWallNode);
 // those of a slip wall also have their tangential velocity free (corners and ends: v = 0).
-// wall_pieces[w]: the pieces of wall w.
+// wall_pieces[w], wall_nodes[w]: the pieces and the nodes of wall w. A moving wall shares only the
+// points its motion leaves in place (a flap's hinge) with other walls: its other nodes are its own,
+// also where one coincides with another wall's at rest (the remesher merges them while they do; a
+// piston standing on a floor slides along it, and splits the floor's constraint where it stands).
 std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState& nodes,
                                std::vector<std::array<std::int32_t, 2>>& pieces, Problem& pb,
-                               std::vector<std::vector<std::array<std::int32_t, 2>>>& wall_pieces) {
+                               std::vector<std::vector<std::array<std::int32_t, 2>>>& wall_pieces,
+                               std::vector<std::vector<int>>& wall_nodes) {
   std::vector<Segment> segments;
+  std::vector<int> owner(nodes.size(), -1);  // per node: the wall that has it (-1: none)
   std::vector<mesh::SlidingWallNode> candidates;
+  std::vector<int> candidate_motion;  // the index among the moving walls of its wall, or -1
+  std::vector<int> motion_of(model.walls_size(), -1);
+  for (int wi = 0, m = 0; wi < model.walls_size(); ++wi)
+    if (model.walls(wi).has_motion()) motion_of[wi] = m++;
   std::vector<std::array<std::int32_t, 2>> candidate_neighbours;
   std::vector<std::uint8_t> candidate_slip;
   std::vector<int> uses;
   const double merge = 1e-6 * h;
-  auto add_unique = [&](double x, double y) -> std::int32_t {
-    for (std::size_t i = 0; i < nodes.size(); ++i)
-      if (nodes.kind[i] == NodeKind::Wall && std::hypot(nodes.x[i] - x, nodes.y[i] - y) < merge)
-        return static_cast<std::int32_t>(i);
-    return nodes.add(x, y, NodeKind::Wall);
+  const auto moving = [&](int wall) { return wall >= 0 && model.walls(wall).has_motion(); };
+  const auto fixed_point = [&](int wall, double x, double y) {  // a point the wall's motion leaves in place
+    if (!moving(wall)) return false;
+    const auto& m = model.walls(wall).motion();
+    return m.kind() == "flap" && std::hypot(m.hinge().x() - x, m.hinge().y() - y) < merge;
   };
-  for (const auto& w : model.walls()) {
+  // The node at (x, y) of wall wi: an existing one there when both walls are fixed, or it is the
+  // same wall's, or a moving wall's hinge.
+  auto add_unique = [&](int wi, double x, double y) -> std::int32_t {
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      if (nodes.kind[i] != NodeKind::Wall || std::hypot(nodes.x[i] - x, nodes.y[i] - y) >= merge) continue;
+      const int other = owner[i];
+      if (other == wi || (!moving(wi) && !moving(other)) || (moving(wi) ? fixed_point(wi, x, y) : fixed_point(other, x, y)))
+        return static_cast<std::int32_t>(i);
+    }
+    // A wall node where a structure node stands (a beam clamped on the floor) takes its exact
+    // place and holds v = 0 (a corner): the remesher merges the two, and a node a rounding away
+    // would make a needle beside the beam's foot, a slip one moving along the floor under it.
+    bool under_structure = false;
+    for (const auto& sn : model.structure().nodes())
+      if (std::hypot(sn.x() - x, sn.y() - y) < merge) x = sn.x(), y = sn.y(), under_structure = true;
+    const std::int32_t node = nodes.add(x, y, NodeKind::Wall);
+    owner.resize(nodes.size(), wi);
+    uses.resize(nodes.size(), 0);
+    uses[node] += under_structure;
+    return node;
+  };
+  for (int wi = 0; wi < model.walls_size(); ++wi) {
+    const auto& w = model.walls(wi);
     const std::size_t first_piece = pieces.size();
+    wall_nodes.emplace_back();
     const int n = w.points_size();
     const int count = w.closed() ? n : n - 1;
     for (int k = 0; k < count; ++k) {
@@ -63,7 +96,8 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
       const double tx = (b.x() - a.x()) / len, ty = (b.y() - a.y()) / len;
       for (int j = 0; j <= count_pieces; ++j) {
         const double t = static_cast<double>(j) / count_pieces;
-        const std::int32_t node = add_unique(a.x() + t * (b.x() - a.x()), a.y() + t * (b.y() - a.y()));
+        const std::int32_t node = add_unique(wi, a.x() + t * (b.x() - a.x()), a.y() + t * (b.y() - a.y()));
+        if (wall_nodes.back().empty() || wall_nodes.back().back() != node) wall_nodes.back().push_back(node);
         if (previous >= 0) pieces.push_back({previous, node});
         uses.resize(nodes.size(), 0);
         ++uses[node];
@@ -73,11 +107,14 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
           candidates.push_back({node, nodes.x[node], nodes.y[node], tx, ty, 0.49 * len / count_pieces});
           candidate_neighbours.push_back({previous, -1});
           candidate_slip.push_back(!w.slip() ? 0 : std::abs(tx) > 0.5 ? kSlipX : kSlipY);
+          candidate_motion.push_back(motion_of[wi]);
         }
         previous = node;
       }
     }
     wall_pieces.emplace_back(pieces.begin() + first_piece, pieces.end());
+    if (w.closed() && wall_nodes.back().size() > 1 && wall_nodes.back().back() == wall_nodes.back().front())
+      wall_nodes.back().pop_back();
   }
   pb.wall_neighbours.assign(nodes.size(), {});
   pb.wall_slip.assign(nodes.size(), 0);
@@ -86,6 +123,7 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
     pb.wall_slip[candidates[c].node] = candidate_slip[c];
     const int k = static_cast<int>(pb.sliding_walls.size());
     pb.sliding_walls.push_back(candidates[c]);
+    pb.sliding_motion.push_back(candidate_motion[c]);
     pb.wall_neighbours[candidates[c].node].push_back(k);
     for (const std::int32_t n : candidate_neighbours[c])
       if (n >= 0) pb.wall_neighbours[n].push_back(k);
@@ -291,7 +329,12 @@ Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<
   std::vector<std::vector<SeedTarget>> sensitivity_targets;
   sensitivity_seeds(model, sensitivity_params, pb, sensitivity_targets);
   std::vector<std::vector<std::array<std::int32_t, 2>>> wall_pieces;
-  auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments, pb, wall_pieces);
+  std::vector<std::vector<int>> wall_nodes;
+  auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments, pb, wall_pieces, wall_nodes);
+  pb.moving_walls = build_wall_motions(with_values, wall_nodes, sensitivity_targets);
+  pb.moving_node.assign(pb.nodes.size(), 0);
+  for (const auto& m : pb.moving_walls)
+    for (const int i : m.nodes) pb.moving_node[i] = 1;
   std::map<std::string, std::vector<std::array<std::int32_t, 2>>> boundary_pieces;  // walls, then beams
   std::map<std::string, std::array<double, 2>> boundary_origin;
   for (int w = 0; w < model.walls_size(); ++w) {

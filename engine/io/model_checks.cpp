@@ -11,6 +11,7 @@
 
 #include "engine/io/geometry_bounds.h"
 #include "engine/io/model_size.h"
+#include "engine/io/motion_checks.h"
 
 namespace pfem {
 
@@ -63,7 +64,7 @@ bool valid_name(const std::string& name) {
 
 const char* kTargetForms =
     "fluid.rho, fluid.mu, fluid.kappa, thickness, material.<name>.e|fy|hardening_ratio, "
-    "section.<name>.width|depth|e|area|inertia or beam.<name>.rho";
+    "section.<name>.width|depth|e|area|inertia, beam.<name>.rho or wavemaker.<wall>.stroke|period|height|scale";
 
 bool beam_elements_valid(const pfem::v1::Beam& b) {
   return b.elements() >= 1 && b.elements() <= kMaxBeamElements;
@@ -86,7 +87,8 @@ std::optional<TargetRef> parse_parameter_target(const std::string& t) {
   static const std::map<std::string, std::set<std::string>> properties{
       {"material", {"e", "fy", "hardening_ratio"}},
       {"section", {"width", "depth", "e", "area", "inertia"}},
-      {"beam", {"rho"}}};
+      {"beam", {"rho"}},
+      {"wavemaker", {"stroke", "period", "height", "scale"}}};
   const auto kind = properties.find(ref.kind);
   if (kind == properties.end() || kind->second.count(ref.property) == 0) return std::nullopt;
   return ref;
@@ -224,6 +226,8 @@ void ModelChecker::check_walls() {
         error(at(path + ".points", k), "a slip wall's pieces must be horizontal or vertical (this one ends at point " +
                                            std::to_string(next) + ")");
     }
+    if (w.has_motion() && w.points_size() >= 2)
+      for (auto& e : wall_motion_errors(model_, i)) errors_.push_back(std::move(e));
   }
 }
 
@@ -474,7 +478,25 @@ void ModelChecker::check_target(const std::string& target, const std::string& pa
                       " (width or depth; E is its material's)");
   } else if (ref->kind == "beam") {
     if (names_.beams.count(ref->name) == 0) error(path, "unknown beam " + quoted(ref->name) + in);
+  } else if (ref->kind == "wavemaker") {
+    const auto* motion = wall_motion_named(ref->name);
+    if (!motion) return error(path, "no wall " + quoted(ref->name) + " with a motion" + in);
+    const std::string& p = ref->property;
+    const bool ok = motion->has_sinusoid() ? p == "stroke" || p == "period"
+                    : motion->has_solitary() ? p == "height"
+                                             : p == "scale";
+    if (!ok)
+      error(path, "the motion of wall " + quoted(ref->name) + " has no " + p +
+                      (motion->has_sinusoid() ? " (a sinusoid: stroke or period)"
+                       : motion->has_solitary() ? " (a solitary wave: height)"
+                                                : " (a table: scale)"));
   }
+}
+
+const pfem::v1::WallMotion* ModelChecker::wall_motion_named(const std::string& name) const {
+  for (const auto& w : model_.walls())
+    if (w.name() == name && w.has_motion()) return &w.motion();
+  return nullptr;
 }
 
 void ModelChecker::check_target_value(const std::string& target, double value, const std::string& path) {
@@ -486,6 +508,10 @@ void ModelChecker::check_target_value(const std::string& target, double value, c
     if (value < 0 || value >= 1) error(path, "must be in [0, 1) for " + target);
   } else if (!(value > 0)) {
     error(path, "must be > 0 for " + target);
+  } else if (ref->kind == "wavemaker" && ref->property == "height") {
+    const auto* motion = wall_motion_named(ref->name);
+    if (motion && motion->has_solitary() && value > 0.6 * motion->solitary().depth())
+      error(path, "must be at most 0.6 of the solitary wave's depth for " + target);
   }
 }
 

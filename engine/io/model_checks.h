@@ -87,6 +87,8 @@ class ModelChecker {
   void check_point(const pfem::v1::Recorder& r, const std::string& path);
   void check_boundary_recorder(const pfem::v1::Recorder& r, const std::string& path);
   void check_target(const std::string& target, const std::string& path);
+  // The motion of the wall of that name (nullptr: none, or it does not move).
+  const pfem::v1::WallMotion* wall_motion_named(const std::string& name) const;
   void check_target_value(const std::string& target, double value, const std::string& path);
 
   const pfem::v1::Model& model_;

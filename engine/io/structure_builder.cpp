@@ -87,7 +87,7 @@ TargetSeeds target_seeds(const pfem::v1::Model& model, const std::vector<std::ve
                         : s.elastic.I) += weight;
       } else if (ref.kind == "beam") {
         seeds.rho[k][find_named(st.beams(), ref.name)] += weight;
-      }  // fluid and thickness targets belong to the fluid
+      }  // fluid, thickness and wavemaker targets belong to the fluid and the walls
     }
   }
   if (!errors.empty()) throw ModelError(std::move(errors));
@@ -126,11 +126,30 @@ TargetField resolve_target(pfem::v1::Model& model, const std::string& target, co
     return {[&] { return cm.has_thickness() ? cm.thickness() : 1.0; },
             [&](double v) { model.set_thickness(v); }};
 
-  const auto& st = cm.structure();
   const std::string in = "' in target '" + target + "'";
   const auto no_property = [&](const std::string& what) {
     return ModelError(path, what + " '" + ref->name + "' has no " + ref->property);
   };
+  if (ref->kind == "wavemaker") {
+    const int i = find_named(cm.walls(), ref->name);
+    if (i < 0 || !cm.walls(i).has_motion()) throw ModelError(path, "no moving wall '" + ref->name + in);
+    auto m = [&model, i] { return model.mutable_walls(i)->mutable_motion(); };
+    const auto& c = cm.walls(i).motion();
+    const std::string& p = ref->property;
+    if (c.has_sinusoid() && p == "stroke")
+      return {[&c] { return c.sinusoid().stroke(); }, [m](double v) { m()->mutable_sinusoid()->set_stroke(v); }};
+    if (c.has_sinusoid() && p == "period")
+      return {[&c] { return c.sinusoid().period(); }, [m](double v) { m()->mutable_sinusoid()->set_period(v); }};
+    if (c.has_solitary() && p == "height")
+      return {[&c] { return c.solitary().height(); }, [m](double v) { m()->mutable_solitary()->set_height(v); }};
+    if (c.has_table() && p == "scale")
+      return {[&c] { return c.table().has_scale() ? c.table().scale() : 1.0; },
+              [m](double v) { m()->mutable_table()->set_scale(v); }};
+    throw no_property(c.has_sinusoid() ? "sinusoid wall motion" : c.has_solitary() ? "solitary wall motion"
+                                                                                  : "wall motion table");
+  }
+
+  const auto& st = cm.structure();
   if (ref->kind == "material") {
     const int i = find_named(st.materials(), ref->name);
     if (i < 0) throw ModelError(path, "unknown material '" + ref->name + in);

@@ -104,10 +104,10 @@ void UnifiedStep::element_terms(const mesh::FluidMesh& mesh, const StepSettings&
   for (int e = 0; e < ne; ++e) {
     std::array<double, 3> x, y, xn, yn;
     for (int a = 0; a < 3; ++a) {
-      const int i = mesh.triangles[e][a], dx = vx_dof_[i], dy = vy_dof_[i];
+      const int i = mesh.triangles[e][a];
       xn[a] = xn_[i], yn[a] = yn_[i];
-      x[a] = xn_[i] + (dx >= 0 ? s.dt * v_[dx] : 0.0);
-      y[a] = yn_[i] + (dy >= 0 ? s.dt * v_[dy] : 0.0);
+      x[a] = xn_[i] + s.dt * velocity_x(i);
+      y[a] = yn_[i] + s.dt * velocity_y(i);
     }
     geometries_[e] = fluid::triangle_geometry(x, y);
     fluid::continuity_at_midpoint(geometries_[e], xn, yn);
@@ -129,9 +129,9 @@ fluid::ElementState UnifiedStep::element_state(const mesh::FluidMesh& mesh, int 
   fluid::ElementState st;
   const auto& tri = mesh.triangles[e];
   for (int a = 0; a < 3; ++a) {
-    const int i = tri[a], dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];
-    st.v(2 * a) = dx >= 0 ? v_[dx] : 0.0;
-    st.v(2 * a + 1) = dy >= 0 ? v_[dy] : 0.0;
+    const int i = tri[a], q = pdof_[i];
+    st.v(2 * a) = velocity_x(i);
+    st.v(2 * a + 1) = velocity_y(i);
     st.vn(2 * a) = vxn_[i];
     st.vn(2 * a + 1) = vyn_[i];
     st.p(a) = q >= 0 ? p_[q] : 0.0;
@@ -142,6 +142,12 @@ fluid::ElementState UnifiedStep::element_state(const mesh::FluidMesh& mesh, int 
   st.vn.tail<2>() = vbn_[e];
   return st;
 }
+
+double UnifiedStep::wall_velocity(int i, int c) const {
+  return wall_velocity_.empty() ? 0.0 : wall_velocity_[2 * static_cast<std::size_t>(i) + c];
+}
+double UnifiedStep::velocity_x(int i) const { return vx_dof_[i] >= 0 ? v_[vx_dof_[i]] : wall_velocity(i, 0); }
+double UnifiedStep::velocity_y(int i) const { return vy_dof_[i] >= 0 ? v_[vy_dof_[i]] : wall_velocity(i, 1); }
 
 void UnifiedStep::residuals(const mesh::FluidMesh& mesh) {
   rv_.setZero(n_v_);
@@ -216,20 +222,29 @@ void UnifiedStep::correct_global_bubble(const StepSettings& s) {
   p_ += dp_star - (s.dt * (g_.transpose() * dv).array() / factor_mp_.array()).matrix();
 }
 
-void UnifiedStep::condense_element(int e, const StepSettings& s, const fluid::GeometricDerivatives* geometric,
-                                   BubbleCondensation& b, CondensedElement& k) const {
+void UnifiedStep::element_jacobian(int e, const StepSettings& s, const fluid::GeometricDerivatives* geometric,
+                                   fluid::Mat8& a, Eigen::Matrix<double, 3, 6>& q) const {
   const auto& m = mats_[e];
   // Element Jacobian -d(rv, rp)/d(v, p): [a -G; Q Gc_b^T Mp/dt] with a = M/dt + K - dt drv/dx and
   // Q = Gc_c^T - dt/2 drp/dx (the coordinates move with the corner velocities, x = x_n + dt v,
   // and the mass balance's midpoint with half of them). The Newton matrix takes G for Gc and no
   // drv/dx, drp/dx: symmetric, and off the Jacobian by terms of order dt |grad v|.
   const fluid::Mat83& gc = geometric ? m.Gc : m.G;
-  fluid::Mat8 a = m.M * (1.0 / s.dt) + m.K;
-  Eigen::Matrix<double, 3, 6> q = gc.block<6, 3>(0, 0).transpose();
+  a = m.M * (1.0 / s.dt) + m.K;
+  q = gc.block<6, 3>(0, 0).transpose();
   if (geometric) {
     a.leftCols<6>() -= s.dt * geometric->drv_dx;
     q -= 0.5 * s.dt * geometric->drp_dx;
   }
+}
+
+void UnifiedStep::condense_element(int e, const StepSettings& s, const fluid::GeometricDerivatives* geometric,
+                                   BubbleCondensation& b, CondensedElement& k) const {
+  const auto& m = mats_[e];
+  const fluid::Mat83& gc = geometric ? m.Gc : m.G;
+  fluid::Mat8 a;
+  Eigen::Matrix<double, 3, 6> q;
+  element_jacobian(e, s, geometric, a, q);
   b.inv_bb = a.block<2, 2>(6, 6).inverse();
   b.a_bc = a.block<2, 6>(6, 0);
   b.a_cb = a.block<6, 2>(0, 6);
@@ -482,11 +497,14 @@ void UnifiedStep::add_structure_tangent(const StepSettings& s, const structure::
 }
 
 bool UnifiedStep::crosses_wall(const StepSettings& s, double px, double py, double qx, double qy) const {
-  const auto end_x = [&](int j) { return vx_dof_[j] >= 0 ? xn_[j] + s.dt * v_[vx_dof_[j]] : xn_[j]; };
-  const auto end_y = [&](int j) { return vy_dof_[j] >= 0 ? yn_[j] + s.dt * v_[vy_dof_[j]] : yn_[j]; };
+  const auto end_x = [&](int j) { return xn_[j] + s.dt * velocity_x(j); };
+  const auto end_y = [&](int j) { return yn_[j] + s.dt * velocity_y(j); };
+  const auto node_moves = [&](int j) {
+    return vx_dof_[j] >= 0 || vy_dof_[j] >= 0 || wall_velocity(j, 0) != 0.0 || wall_velocity(j, 1) != 0.0;
+  };
   for (const auto& [a, b] : s.walls) {
     if (segments_cross(px, py, qx, qy, xn_[a], yn_[a], xn_[b], yn_[b])) return true;
-    const bool moves = vx_dof_[a] >= 0 || vy_dof_[a] >= 0 || vx_dof_[b] >= 0 || vy_dof_[b] >= 0;
+    const bool moves = node_moves(a) || node_moves(b);
     if (moves && segments_cross(px, py, qx, qy, end_x(a), end_y(a), end_x(b), end_y(b))) return true;
   }
   return false;
@@ -542,6 +560,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   report_ = StepReport{};
   StepReport& report = report_;
   xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy, pn_ = nodes.p;
+  wall_velocity_ = s.wall_velocity;
   if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
   number_unknowns(mesh, nodes, s);
   volume_correction(mesh, s);
@@ -666,7 +685,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
       ++report.removed_particles;
       continue;
     }
-    nodes.vx[i] = dx >= 0 ? v_[dx] : 0.0, nodes.vy[i] = dy >= 0 ? v_[dy] : 0.0;
+    nodes.vx[i] = velocity_x(static_cast<int>(i)), nodes.vy[i] = velocity_y(static_cast<int>(i));
     nodes.x[i] = xn_[i] + s.dt * nodes.vx[i];
     nodes.y[i] = yn_[i] + s.dt * nodes.vy[i];
   }

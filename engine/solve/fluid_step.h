@@ -78,6 +78,11 @@ struct StepSettings {
   // its wall with the water; it returns to its place before the next remeshing (see
   // mesh/contact_line.h), keeping its velocity.
   std::span<const std::uint8_t> slip;
+  // Walls with a prescribed motion (empty: none): per node, x and y (2 entries), the velocity
+  // over the step of a moving wall's node, 0 elsewhere; it takes the place of v = 0 where the
+  // node has no unknown. For the DDM, per node and parameter (2 entries each), its sensitivity.
+  std::span<const double> wall_velocity;
+  std::span<const double> wall_velocity_sensitivity;
   StructureCoupling structure;  // no structure when model is null
   // DDM (theory §5): one seed per parameter (how it moves the fluid constants; the structure's
   // seeds live in its model); empty for no sensitivities. Without geometric terms H and T are
@@ -176,6 +181,15 @@ class UnifiedStep {
                         BubbleCondensation& b, CondensedElement& k) const;
   // The unknowns of a triangle's corners in that order (-1 where there is none).
   std::array<int, 9> element_unknowns(const std::array<std::int32_t, 3>& tri) const;
+  // An element's Jacobian -d(rv, rp)/d(v, p) in its velocity columns: the velocity rows a
+  // (corners, then bubble) and the pressure rows q of the corner columns (see condense_element).
+  void element_jacobian(int e, const StepSettings& s, const fluid::GeometricDerivatives* geometric, fluid::Mat8& a,
+                        Eigen::Matrix<double, 3, 6>& q) const;
+  // Node i's x or y velocity at the iterate: its unknown's, else a moving wall's or 0.
+  double velocity_x(int i) const;
+  double velocity_y(int i) const;
+  // The prescribed velocity of component c (0: x, 1: y) of node i (0 unless a moving wall's).
+  double wall_velocity(int i, int c) const;
   // Triplets of the exact Jacobian (the condensed matrix with H and T, in full) and each
   // element's condensation.
   void condensed_triplets(const mesh::FluidMesh& mesh, const StepSettings& s,
@@ -229,6 +243,7 @@ class UnifiedStep {
   int n_node_v_ = 0, n_v_ = 0, n_p_ = 0;
   std::vector<double> xn_, yn_, vxn_, vyn_, pn_;  // state at t_n (per node)
   std::vector<std::uint8_t> hits_wall_;           // per node: hits a wall (check_admissible)
+  std::span<const double> wall_velocity_;         // StepSettings::wall_velocity of this step
   // Volume correction: the dilatation [1/s], the mesh's area at t_n and each element's area there.
   double dilatation_ = 0.0, area_n_ = 0.0, source_scale_ = 0.0;
   std::vector<double> element_area_n_;

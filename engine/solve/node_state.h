@@ -41,7 +41,8 @@ struct NodeState {
   const double* sensitivity(std::size_t node, int k) const {
     return &sens[(node * num_params + k) * kSensitivityFields];
   }
-  // Walls and removed particles never move.
+  // Walls and removed particles have no velocity unknowns (a wavemaker's wall moves as it is
+  // told, engine/motion).
   bool is_fixed(std::size_t i) const {
     return kind[i] == mesh::NodeKind::Wall || kind[i] == mesh::NodeKind::Removed;
   }

@@ -2,6 +2,8 @@
 //
 // Differentiating the converged residual r(v, p; x = x_n + dt v, v_n, p_n, theta) = 0 gives
 //   -(dr/dv + dt dr/dx) dv - dr/dp dp = dr/dx dx_n + dr/dv_n dv_n + dr/dp_n dp_n + dr/dtheta|
+// (A moving wall's node has no unknown: its prescribed velocity sensitivity dv_w adds
+// dr/dv_w dv_w to the right-hand side, with x = x_n + dt v there too.)
 // The matrix is the exact Jacobian of the step (H and T through dr/dx, the structure's
 // consistent tangent) and does not depend on the parameter: for a few parameters GMRES
 // preconditioned by the response's factorisation, for more one UMFPACK factorisation and a
@@ -98,6 +100,9 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
     const fluid::ElementState st = element_state(mesh, e);
     const auto& gd = geometric_[e];
     const int bubble = n_node_v_ + 2 * e;
+    fluid::Mat8 a_e;
+    Eigen::Matrix<double, 3, 6> q_e;
+    bool have_jacobian = false;
     for (int k = 0; k < num_params; ++k) {
       for (int a = 0; a < 3; ++a) {
         const double* d = nodes.sensitivity(tri[a], k);
@@ -113,6 +118,16 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
             fluid::conditional_derivative(geometries_[e], m, s.fluid, s.thickness, s.dt, st, s.sensitivity[k]);
         sv += c.rv;
         sp += c.rp;
+      }
+      // A moving wall's corner: its prescribed velocity sensitivity w enters as -J(:, corner) w.
+      for (int c = 0; !s.wall_velocity_sensitivity.empty() && c < 6; ++c) {
+        const int i = tri[c / 2];
+        if ((c % 2 == 0 ? vx_dof_[i] : vy_dof_[i]) >= 0) continue;
+        const double w = s.wall_velocity_sensitivity[(static_cast<std::size_t>(i) * num_params + k) * 2 + c % 2];
+        if (w == 0.0) continue;
+        if (!have_jacobian) element_jacobian(e, s, &gd, a_e, q_e), have_jacobian = true;
+        sv -= a_e.col(c) * w;
+        sp -= q_e.col(c) * w;
       }
       if (dilatation_ != 0.0) {
         const double da = darea_e[static_cast<std::size_t>(e) * num_params + k];
@@ -205,8 +220,11 @@ void UnifiedStep::commit_sensitivities(const StepSettings& s, NodeState& nodes) 
       d[NodeState::kDp] = q >= 0 ? dp_(q, k) : 0.0;
       // A particle that hit a wall is taken out where it was (advance()): it keeps its state.
       if ((dx < 0 && dy < 0) || hits_wall_[i]) continue;
-      d[NodeState::kDvx] = dx >= 0 ? dv_(dx, k) : 0.0;
-      d[NodeState::kDvy] = dy >= 0 ? dv_(dy, k) : 0.0;
+      const auto wall = [&](int c) {
+        return s.wall_velocity_sensitivity.empty() ? 0.0 : s.wall_velocity_sensitivity[(i * num_params + k) * 2 + c];
+      };
+      d[NodeState::kDvx] = dx >= 0 ? dv_(dx, k) : wall(0);
+      d[NodeState::kDvy] = dy >= 0 ? dv_(dy, k) : wall(1);
       d[NodeState::kDx] += s.dt * d[NodeState::kDvx];
       d[NodeState::kDy] += s.dt * d[NodeState::kDvy];
     }

@@ -544,7 +544,8 @@ TEST(SloshingBeam, ParameterTargets) {
       {"beam.pole.rho", "unknown beam 'pole' in target 'beam.pole.rho'"},
       {"section.square.radius",
        "unknown target 'section.square.radius'; expected fluid.rho, fluid.mu, fluid.kappa, thickness, "
-       "material.<name>.e|fy|hardening_ratio, section.<name>.width|depth|e|area|inertia or beam.<name>.rho"},
+       "material.<name>.e|fy|hardening_ratio, section.<name>.width|depth|e|area|inertia, beam.<name>.rho "
+       "or wavemaker.<wall>.stroke|period|height|scale"},
   };
   for (const auto& c : cases) {
     auto bad = m;

@@ -1,0 +1,80 @@
+// A piston wavemaker standing on the floor of a 1 m flume, 0.1 m deep (tests/data/piston-tank.json):
+//  - held still, the paddle seals the floor it stands on (which runs on behind it): the water
+//    stays at rest with its level and area (a paddle 3 mm above the floor let it run out under
+//    it: the level at 0.3 m fell by 12 % in 0.8 s and the run failed at 0.89 s);
+//  - pushing, the paddle keeps the water's area (the water is incompressible: it only rises);
+//  - the DDM of the wave gauges, the force on the paddle and the area with respect to the stroke
+//    and the period against central FDM. Biesel's transfer function: tests/slow/wavemaker_transfer_test.cpp.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "engine/analysis/gradient_check.h"
+#include "engine/analysis/run.h"
+#include "engine/io/model_io.h"
+
+namespace pfem {
+namespace {
+
+pfem::v1::Model piston_tank() { return read_model_file(std::string(PFEM_SOURCE_DIR) + "/tests/data/piston-tank.json"); }
+
+int column(const Histories& h, const std::string& name) {
+  const auto it = std::find(h.columns.begin(), h.columns.end(), name);
+  EXPECT_NE(it, h.columns.end()) << name;
+  return static_cast<int>(it - h.columns.begin());
+}
+
+TEST(Wavemaker, APaddleStandingOnTheFloorSealsIt) {
+  auto model = piston_tank();
+  model.mutable_walls(1)->clear_motion();
+  model.clear_parameters();
+  model.mutable_analysis()->set_t_end(2.0);
+  const RunResult r = run(model, RunOptions{});
+  ASSERT_EQ(r.summary.status, RunStatus::kCompleted) << r.summary.message;
+  const int eta = column(r.responses, "eta"), far = column(r.responses, "eta_far");
+  double worst = 0.0;
+  for (const auto& row : r.responses.rows) worst = std::max({worst, std::abs(row[eta] - 0.1), std::abs(row[far] - 0.1)});
+  std::printf("still paddle, 2 s: max |eta - d| %.2e m, max |A/A0 - 1| %.2e\n", worst, r.summary.fluid_area_max_drift);
+  EXPECT_LT(worst, 1e-4);
+  EXPECT_LT(r.summary.fluid_area_max_drift, 1e-4);
+}
+
+TEST(Wavemaker, ThePushedWaterKeepsItsArea) {
+  auto model = piston_tank();
+  model.clear_parameters();
+  model.mutable_analysis()->set_t_end(3.0);
+  const RunResult r = run(model, RunOptions{});
+  ASSERT_EQ(r.summary.status, RunStatus::kCompleted) << r.summary.message;
+  const int eta = column(r.responses, "eta");
+  double low = 1.0, high = 0.0;
+  for (std::size_t i = 0; i < r.responses.rows.size(); ++i)
+    if (r.responses.time[i] > 2.0) low = std::min(low, r.responses.rows[i][eta]), high = std::max(high, r.responses.rows[i][eta]);
+  std::printf("pushing paddle, 3 s: max |A/A0 - 1| %.2e, wave height at 0.3 m after 2 s %.4f m\n",
+              r.summary.fluid_area_max_drift, high - low);
+  EXPECT_LT(r.summary.fluid_area_max_drift, 5e-3);
+  EXPECT_GT(high - low, 0.003);  // a wave (Biesel: 0.0068 m for this stroke, before reflections)
+}
+
+TEST(Wavemaker, DdmOfGaugesAndPaddleForceMatchesCentralFdm) {
+  RunOptions options;
+  options.t_end = 1.0;
+  options.fdm_eps = 1e-6;
+  options.params = {"S", "T"};
+  const GradientCheck c = check_gradients(piston_tank(), options, true);
+  ASSERT_EQ(c.ddm.status, RunStatus::kCompleted) << c.ddm.message;
+  ASSERT_EQ(c.fdm.status, RunStatus::kCompleted) << c.fdm.message;
+  int checked = 0;
+  for (const auto& r : c.rows) {
+    std::printf("%-10s %-2s max|FDM| %.4e  DDM %.2e\n", r.recorder.c_str(), r.parameter.c_str(), r.max_fdm, r.ddm);
+    ++checked;
+    EXPECT_GT(r.max_fdm, 0.0) << r.recorder << "/" << r.parameter;
+    EXPECT_LE(r.ddm, 1e-4) << r.recorder << "/" << r.parameter;
+  }
+  EXPECT_EQ(checked, 8);
+}
+
+}  // namespace
+}  // namespace pfem
