@@ -30,10 +30,15 @@ double distance_to_polyline(const pfem::v1::Wall& w, double x, double y) {
 class MotionChecker {
  public:
   MotionChecker(const pfem::v1::Model& model, int wall)
-      : model_(model), wall_(model.walls(wall)), path_("walls[" + std::to_string(wall) + "].motion") {}
+      : model_(model), wall_(model.walls(wall)), path_("walls[" + std::to_string(wall) + "].motion"),
+        wall_path_("walls[" + std::to_string(wall) + "]") {}
 
   std::vector<FieldError> run() {
     const auto& m = wall_.motion();
+    // A slip paddle's nodes carry the water up and down it with a free tangential velocity; its
+    // waves came out 14 % below Biesel's (kh = 0.68, 3 d from the paddle; a no-slip paddle: 2 %).
+    if (wall_.slip())
+      errors_.push_back({wall_path_ + ".slip", "a moving wall must be no-slip (a slip paddle makes waves 14 % too low)"});
     const bool flap = m.kind() == "flap";
     if (!flap && m.kind() != "piston") error("kind", "must be \"piston\" or \"flap\" (got \"" + m.kind() + "\")");
     if (!flap && m.has_direction()) {
@@ -60,7 +65,6 @@ class MotionChecker {
 
   void check_flap() {
     const auto& m = wall_.motion();
-    if (wall_.slip()) error("kind", "a flap's wall turns: it cannot be a slip wall (its pieces must stay axis-aligned)");
     positive("arm", m.arm());
     if (!is_finite(m.hinge().x()) || !is_finite(m.hinge().y())) return error("hinge", "must be finite");
     const double h = model_.mesh().h();
@@ -146,7 +150,7 @@ class MotionChecker {
 
   const pfem::v1::Model& model_;
   const pfem::v1::Wall& wall_;
-  std::string path_;
+  std::string path_, wall_path_;
   std::vector<FieldError> errors_;
 };
 
