@@ -138,6 +138,16 @@ TEST_F(CheckpointRestart, FluidOnlyWithAndWithoutDdm) {
   }
 }
 
+// A piston wavemaker (tests/data/piston-tank.json to 0.4 s) with the DDM of its stroke and period:
+// the paddle's place and velocity come from the motion at the restart's time.
+TEST_F(CheckpointRestart, APistonWavemakerWithDdm) {
+  auto model = read_model_file(std::string(PFEM_SOURCE_DIR) + "/tests/data/piston-tank.json");
+  model.mutable_analysis()->set_t_end(0.4);
+  RunOptions options;
+  options.sensitivity = SensitivityMethod::kDdm;
+  expect_same_run(run(model, options), stopped_and_restarted(model, options, 37, 10));
+}
+
 TEST_F(CheckpointRestart, YieldingBeamWithGmresAndLuSensitivitiesAndWithout) {
   auto model = yielding_obstacle();
   for (const auto& [name, target] : {std::pair{"hardening", "material.steel.hardening_ratio"},
