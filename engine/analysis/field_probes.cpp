@@ -9,10 +9,14 @@
 
 namespace pfem {
 ProbeSite wave_gauge_site(const mesh::FluidMesh& mesh, const NodeState& nodes, double x) {
-  // Boundary edges: those of one kept triangle only.
+  // Boundary edges: those of one kept triangle only. An edge that crosses the line (see below)
+  // lies only in triangles that span it, lo <= x < hi: the others are left out.
   std::map<std::pair<std::int32_t, std::int32_t>, int> uses;
-  for (const auto& t : mesh.triangles)
+  for (const auto& t : mesh.triangles) {
+    const auto [lo, hi] = std::minmax({nodes.x[t[0]], nodes.x[t[1]], nodes.x[t[2]]});
+    if (!(lo <= x && x < hi)) continue;
     for (int e = 0; e < 3; ++e) ++uses[std::minmax(t[e], t[(e + 1) % 3])];
+  }
   ProbeSite best;
   double best_y = 0.0;
   for (const auto& [edge, count] : uses) {
