@@ -5,7 +5,8 @@
 //  - pushing, the paddle keeps the water's area (the water is incompressible: it only rises);
 //  - the DDM of the wave gauges, the force on the paddle and the area with respect to the stroke
 //    and the period against central FDM (within 1e-4; the area, nearly constant, 1e-3).
-// And the DDM of examples/wave-flume.json's flexible wall and gauge (below).
+// And the DDM of a solitary wave's height and a table's scale, and of examples/wave-flume.json's
+// flexible wall and gauge (below).
 // Biesel's transfer function: tests/slow/wavemaker_transfer_test.cpp.
 #include <gtest/gtest.h>
 
@@ -78,6 +79,43 @@ TEST(Wavemaker, DdmOfGaugesAndPaddleForceMatchesCentralFdm) {
     EXPECT_LE(r.ddm, r.recorder == "fluid_area" ? 1e-3 : 1e-4) << r.recorder << "/" << r.parameter;
   }
   EXPECT_EQ(checked, 8);
+}
+
+// The piston tank driven by Goring's solitary trajectory (H = 0.2 d) and by a cubic table: the
+// DDM of its gauges and paddle force with respect to the wave height and the table's scale.
+TEST(Wavemaker, DdmOfASolitaryWavesHeightAndATablesScale) {
+  for (const bool solitary : {true, false}) {
+    auto model = piston_tank();
+    auto* motion = model.mutable_walls(1)->mutable_motion();
+    model.clear_parameters();
+    auto* p = model.add_parameters();
+    if (solitary) {
+      motion->mutable_solitary()->set_height(0.02);
+      motion->mutable_solitary()->set_depth(0.1);
+      p->set_name("H"), p->add_targets("wavemaker.paddle.height");
+    } else {
+      auto* table = motion->mutable_table();
+      for (const double t : {0.0, 0.3, 0.6, 1.0}) table->add_t(t);
+      for (const double v : {0.0, 0.004, 0.001, 0.006}) table->add_s(v);
+      table->set_interpolation("cubic");
+      p->set_name("A"), p->add_targets("wavemaker.paddle.scale");
+    }
+    RunOptions options;
+    options.t_end = 1.2;
+    options.fdm_eps = 1e-7;
+    const GradientCheck c = check_gradients(model, options, true);
+    ASSERT_EQ(c.ddm.status, RunStatus::kCompleted) << c.ddm.message;
+    ASSERT_EQ(c.fdm.status, RunStatus::kCompleted) << c.fdm.message;
+    int checked = 0;
+    for (const auto& r : c.rows) {
+      if (r.recorder == "fluid_area") continue;  // nearly constant (see above)
+      std::printf("%-10s %-2s max|FDM| %.4e  DDM %.2e\n", r.recorder.c_str(), r.parameter.c_str(), r.max_fdm, r.ddm);
+      ++checked;
+      EXPECT_GT(r.max_fdm, 0.0) << r.recorder << "/" << r.parameter;
+      EXPECT_LE(r.ddm, 1e-4) << r.recorder << "/" << r.parameter;
+    }
+    EXPECT_EQ(checked, 3);
+  }
 }
 
 // examples/wave-flume.json to 2.5 s (the first waves reach its flexible wall): the wall's tip, the
