@@ -23,6 +23,12 @@ Bounds domain_bounds(const pfem::v1::Model& model) {
   return {b.xmin - grow, b.ymin - grow, b.xmax + grow, b.ymax + grow};
 }
 
+double distance_to_segment(double px, double py, double ax, double ay, double bx, double by) {
+  const double dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
+  const double t = len2 > 0 ? std::clamp(((px - ax) * dx + (py - ay) * dy) / len2, 0.0, 1.0) : 0.0;
+  return std::hypot(px - ax - t * dx, py - ay - t * dy);
+}
+
 SegmentContact segment_contact(double ax, double ay, double bx, double by, double cx, double cy, double dx,
                                double dy) {
   const double scale = std::max({std::abs(bx - ax), std::abs(by - ay), std::abs(dx - cx), std::abs(dy - cy)});

@@ -31,6 +31,8 @@ Bounds domain_bounds(const pfem::v1::Model& model);
 enum class SegmentContact { kNone, kTouch, kCross, kOverlap };
 SegmentContact segment_contact(double ax, double ay, double bx, double by, double cx, double cy, double dx,
                                double dy);
+// The distance from the point (px, py) to the segment ab.
+double distance_to_segment(double px, double py, double ax, double ay, double bx, double by);
 Bounds polygon_bounds(const pfem::v1::Polygon& polygon);
 double polygon_area(const pfem::v1::Polygon& polygon);  // signed, counter-clockwise positive
 

@@ -21,14 +21,6 @@ struct Segment {
   double ax, ay, bx, by;
 };
 
-double distance_to_segment(double px, double py, const Segment& s) {
-  const double dx = s.bx - s.ax, dy = s.by - s.ay;
-  const double len2 = dx * dx + dy * dy;
-  double t = len2 > 0 ? ((px - s.ax) * dx + (py - s.ay) * dy) / len2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return std::hypot(px - s.ax - t * dx, py - s.ay - t * dy);
-}
-
 // Wall nodes at spacing <= h along each polyline; corners shared by two walls appear once.
 // Returns the wall lines (for placing particles) and records the node pairs of every wall
 // piece in nodes' segment list.
@@ -170,7 +162,7 @@ bool inside_polygon(const pfem::v1::Polygon& poly, double x, double y, double to
   for (int i = 0, j = n - 1; i < n; j = i++) {
     const auto& a = poly.points(i);
     const auto& b = poly.points(j);
-    if (distance_to_segment(x, y, {a.x(), a.y(), b.x(), b.y()}) <= tol) return true;
+    if (distance_to_segment(x, y, a.x(), a.y(), b.x(), b.y()) <= tol) return true;
     if ((a.y() > y) != (b.y() > y) && x < (b.x() - a.x()) * (y - a.y()) / (b.y() - a.y()) + a.x())
       inside = !inside;
   }
@@ -186,7 +178,7 @@ void add_region(const pfem::v1::FluidRegion& region, double h, const std::vector
                 NodeState& nodes, std::size_t first_particle) {
   const auto clear_of = [&](double x, double y, std::size_t first, std::size_t last) {
     for (const auto& s : walls)
-      if (distance_to_segment(x, y, s) < 0.5 * h) return false;
+      if (distance_to_segment(x, y, s.ax, s.ay, s.bx, s.by) < 0.5 * h) return false;
     for (std::size_t k = first; k < last; ++k)
       if (std::hypot(nodes.x[k] - x, nodes.y[k] - y) < 0.5 * h) return false;
     return true;

@@ -20,9 +20,7 @@ double distance_to_polyline(const pfem::v1::Wall& w, double x, double y) {
   for (int k = 0; k < count; ++k) {
     const auto& a = w.points(k);
     const auto& b = w.points((k + 1) % n);
-    const double dx = b.x() - a.x(), dy = b.y() - a.y(), len2 = dx * dx + dy * dy;
-    const double t = len2 > 0 ? std::clamp(((x - a.x()) * dx + (y - a.y()) * dy) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, std::hypot(x - a.x() - t * dx, y - a.y() - t * dy));
+    best = std::min(best, distance_to_segment(x, y, a.x(), a.y(), b.x(), b.y()));
   }
   return best;
 }

@@ -10,7 +10,6 @@ namespace pfem::motion {
 // How much one DDM parameter moves a signal's constants (d constant / d parameter).
 struct SignalSeed {
   double stroke = 0.0, period = 0.0, height = 0.0, scale = 0.0;
-  bool any() const { return stroke != 0.0 || period != 0.0 || height != 0.0 || scale != 0.0; }
 };
 
 // A value and its derivative along one parameter.
