@@ -141,8 +141,12 @@ TEST(Replicas, ASigkilledReplicaCostsTimeNotTheResult) {
                   " --concurrency 3");
     done = true;
   });
-  // Mid-run: FORM is done and the sampling, three calls in flight, under way.
+  // Mid-run: FORM is done and the sampling, three calls in flight, under way. b is frozen
+  // first (SIGSTOP) so that the calls round_robin sends it meanwhile hang in its socket: when
+  // SIGKILL comes, at least one call is in flight on it, however loaded the machine is.
   std::this_thread::sleep_for(std::chrono::duration<double>(0.4 * three_replica_seconds));
+  ::kill(b.pid(), SIGSTOP);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
   const bool killed_mid_run = !done;
   b.stop(SIGKILL, 10);
   form.join();

@@ -55,6 +55,7 @@ class ServerProcess {
   ServerProcess& operator=(const ServerProcess&) = delete;
 
   const std::string& address() const { return address_; }
+  pid_t pid() const { return pid_; }
 
   // Sends `signal` and waits (at most `seconds`) for the exit; returns the wait status, or -1
   // when it has not exited.
