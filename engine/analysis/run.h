@@ -98,12 +98,14 @@ struct RunSummary {
   int removed_particles = 0;   // taken out for coming too close to another node, or for crossing a wall
   int inserted_particles = 0;  // added in the middle of stretched edges
   int left_domain = 0;         // removed for leaving the domain (domain.on_exit "remove")
-  double fluid_area_max_drift = 0.0;  // largest |A(t)/A(0) - 1| over the recorded steps
+  // Largest |A(t) / (A(0) - A_left(t)) - 1| over the steps: the drift of the water that stays.
+  double fluid_area_max_drift = 0.0;
   std::vector<std::string> warnings;  // e.g. the fluid area drifted by more than kAreaDriftWarning
   int particles = 0;
   int max_elements = 0;
   double fluid_area_initial = 0.0;
   double fluid_area_final = 0.0;
+  double fluid_area_left = 0.0;  // A_left: the mesh area the particles that left the domain held
   std::string sensitivity_method;       // "none", "ddm" or "fdm"
   std::vector<std::string> parameters;  // names differentiated
   std::vector<double> parameter_values;

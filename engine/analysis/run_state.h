@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "engine/analysis/simulation.h"
+#include "engine/analysis/water_account.h"
 #include "engine/mesh/remesher.h"
 #include "engine/solve/fluid_step.h"
 #include "engine/solve/node_state.h"
@@ -19,6 +20,7 @@ struct RunState {
   mesh::FluidMesh mesh;
   std::optional<structure::StructureModel> structure;  // with its history and sensitivities
   UnifiedStep solver;                                  // bubbles by triangle, LU analysis
+  WaterAccount water;                                  // the volume correction's target
   // The histories so far and the summary's counts (summary.steps: the steps done).
   SimulationOutput out;
 };

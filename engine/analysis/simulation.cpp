@@ -244,9 +244,10 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
     record(0.0);
     if (vtk) vtk->write(0.0, nodes, mesh, model);
   }
-  // The volume correction (StepSettings::target_area): back to the initial area.
-  settings.target_area = sum.fluid_area_initial;
+  // The volume correction (StepSettings::target_area): back to the initial area, less the water
+  // in flight or gone (water_account.h), set at each step's start.
   settings.volume_relaxation = problem.volume_relaxation_steps * problem.dt;
+  std::vector<double> target_sensitivity;
   const int first_step = sum.steps + 1;
   const double earlier_seconds = sum.wall_seconds;  // of the run before the restart
   const auto save_checkpoint = [&] {
@@ -273,6 +274,9 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
         mesh = remesh_after(problem, mesh, nodes, remesh_options, settings.dt, time_of(n - 1));
         sum.remesh_seconds += since(t0);
       }
+      state.water.update(mesh, nodes);
+      settings.target_area = state.water.target(sum.fluid_area_initial, mesh, nodes, target_sensitivity);
+      settings.target_area_sensitivity = target_sensitivity;
       const int iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, nodes, time_of(n - 1),
                                               problem.removal_distance * problem.h, options.cancel, sum);
       sum.max_elements = std::max<int>(sum.max_elements, static_cast<int>(mesh.triangles.size()));
@@ -284,13 +288,15 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
           throw StepFailure(msg.str());
         }
         nodes.kind[i] = mesh::NodeKind::Removed;  // is_fixed from now on: node_outside skips it
+        state.water.leave(i);
         ++sum.left_domain;
       }
+      sum.fluid_area_left = state.water.left();
       if (n % problem.record_every == 0 || n == total_steps) record(time);
       if (vtk && (n % vtk_every == 0 || n == total_steps)) vtk->write(time, nodes, mesh, model);
       sum.fluid_area_final = fluid_area(mesh, nodes);
-      sum.fluid_area_max_drift =
-          std::max(sum.fluid_area_max_drift, std::abs(sum.fluid_area_final / sum.fluid_area_initial - 1.0));
+      sum.fluid_area_max_drift = std::max(sum.fluid_area_max_drift,
+                                          std::abs(sum.fluid_area_final / settings.target_area - 1.0));
       if (n < total_steps) {  // spacing for the next step (none after the last: the outputs are final)
         sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind,
                                                               problem.removal_distance * problem.h);

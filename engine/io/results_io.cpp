@@ -70,6 +70,7 @@ std::string summary_json(const RunSummary& s) {
     << "  \"max_elements\": " << s.max_elements << ",\n"
     << "  \"fluid_area_initial\": " << number(s.fluid_area_initial) << ",\n"
     << "  \"fluid_area_final\": " << number(s.fluid_area_final) << ",\n"
+    << "  \"fluid_area_left\": " << number(s.fluid_area_left) << ",\n"
     << "  \"sensitivity_method\": " << quoted(s.sensitivity_method) << ",\n"
     << "  \"warnings\": [";
   for (std::size_t i = 0; i < s.warnings.size(); ++i) o << (i ? ", " : "") << quoted(s.warnings[i]);

@@ -94,6 +94,7 @@ struct StepSettings {
   // that area a remeshing made or lost is returned to the water over about volume_relaxation.
   double target_area = 0.0;        // [m^2]
   double volume_relaxation = 0.0;  // [s]
+  std::span<const double> target_area_sensitivity;  // per parameter (empty: none moves it)
 };
 
 struct StepReport {
@@ -225,8 +226,6 @@ class UnifiedStep {
   // per parameter; then the sensitivities committed to the nodes, the bubbles and the structure
   // (before the structure's own commit).
   void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
-  // d(area at t_n)/d(parameter k) of triangle t, from its corners' position sensitivities.
-  double area_sensitivity(const std::array<std::int32_t, 3>& t, const NodeState& nodes, int k) const;
   Eigen::VectorXd structure_sensitivity_rhs(const StepSettings& s, const NodeState& nodes, int k) const;
   void commit_sensitivities(const StepSettings& s, NodeState& nodes);
   // Newton corrections from the current residuals with the last factorisation.

@@ -2,6 +2,7 @@
 // The nodal state every part of a step reads and writes: fluid particles, wall nodes and
 // (later) structure nodes in one set of arrays. Everything lives on nodes so that it survives
 // remeshing (theory §6, step 4).
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -40,6 +41,21 @@ struct NodeState {
   double* sensitivity(std::size_t node, int k) { return &sens[(node * num_params + k) * kSensitivityFields]; }
   const double* sensitivity(std::size_t node, int k) const {
     return &sens[(node * num_params + k) * kSensitivityFields];
+  }
+  // A triangle's area at the current positions, and its derivative w.r.t. parameter k from
+  // its corners' position sensitivities.
+  double triangle_area(const std::array<std::int32_t, 3>& t) const {
+    return 0.5 * ((x[t[1]] - x[t[0]]) * (y[t[2]] - y[t[0]]) - (x[t[2]] - x[t[0]]) * (y[t[1]] - y[t[0]]));
+  }
+  double triangle_area_sensitivity(const std::array<std::int32_t, 3>& t, int k) const {
+    const double* d0 = sensitivity(t[0], k);
+    const double* d1 = sensitivity(t[1], k);
+    const double* d2 = sensitivity(t[2], k);
+    const double x1 = x[t[1]] - x[t[0]], y1 = y[t[1]] - y[t[0]];
+    const double x2 = x[t[2]] - x[t[0]], y2 = y[t[2]] - y[t[0]];
+    const double dx1 = d1[kDx] - d0[kDx], dy1 = d1[kDy] - d0[kDy];
+    const double dx2 = d2[kDx] - d0[kDx], dy2 = d2[kDy] - d0[kDy];
+    return 0.5 * (dx1 * y2 + x1 * dy2 - dx2 * y1 - x2 * dy1);
   }
   // Walls and removed particles have no velocity unknowns (a wavemaker's wall moves as it is
   // told, engine/motion).

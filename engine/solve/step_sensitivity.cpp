@@ -60,17 +60,6 @@ void UnifiedStep::factorize_jacobian() {
   jacobian_solver_.factorize(jacobian_);
 }
 
-double UnifiedStep::area_sensitivity(const std::array<std::int32_t, 3>& t, const NodeState& nodes, int k) const {
-  const double* d0 = nodes.sensitivity(t[0], k);
-  const double* d1 = nodes.sensitivity(t[1], k);
-  const double* d2 = nodes.sensitivity(t[2], k);
-  const double x1 = xn_[t[1]] - xn_[t[0]], y1 = yn_[t[1]] - yn_[t[0]];
-  const double x2 = xn_[t[2]] - xn_[t[0]], y2 = yn_[t[2]] - yn_[t[0]];
-  const double dx1 = d1[NodeState::kDx] - d0[NodeState::kDx], dy1 = d1[NodeState::kDy] - d0[NodeState::kDy];
-  const double dx2 = d2[NodeState::kDx] - d0[NodeState::kDx], dy2 = d2[NodeState::kDy] - d0[NodeState::kDy];
-  return 0.5 * (dx1 * y2 + x1 * dy2 - dx2 * y1 - x2 * dy1);
-}
-
 void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
   assemble_jacobian(mesh, s, s.geometric_terms);
   const int num_params = static_cast<int>(s.sensitivity.size());
@@ -81,18 +70,21 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
   fluid::Vec8 dvn;
   fluid::Vec3 dpn;
   // The volume correction's dilatation (target / A_n - 1) / relaxation depends on the parameter
-  // through the mesh's area at t_n (the target is the initial area, which none moves); each
-  // corner's source dilatation * thickness * A_e / 3 through it and through A_e.
+  // through the mesh's area at t_n and through the target (the initial area less the water that
+  // left the domain); each corner's source dilatation * thickness * A_e / 3 through it and A_e.
+  // (At this point the nodes are still at t_n.)
   std::vector<double> darea_e;
   Eigen::VectorXd ddilatation = Eigen::VectorXd::Zero(num_params);
   if (dilatation_ != 0.0) {
     darea_e.assign(static_cast<std::size_t>(ne) * num_params, 0.0);
     for (int e = 0; e < ne; ++e)
       for (int k = 0; k < num_params; ++k) {
-        darea_e[static_cast<std::size_t>(e) * num_params + k] = area_sensitivity(mesh.triangles[e], nodes, k);
+        darea_e[static_cast<std::size_t>(e) * num_params + k] = nodes.triangle_area_sensitivity(mesh.triangles[e], k);
         ddilatation(k) += darea_e[static_cast<std::size_t>(e) * num_params + k];
       }
     ddilatation *= -s.target_area / (area_n_ * area_n_ * s.volume_relaxation);
+    for (int k = 0; k < num_params && !s.target_area_sensitivity.empty(); ++k)
+      ddilatation(k) += s.target_area_sensitivity[k] / (area_n_ * s.volume_relaxation);
   }
   for (int e = 0; e < ne; ++e) {
     const auto& m = mats_[e];
