@@ -2,8 +2,8 @@
 
 #include <chrono>
 
+#include "engine/analysis/functional.h"
 #include "server/convert.h"
-#include "server/functional.h"
 #include "server/hashing.h"
 #include "server/requests.h"
 #include "server/status.h"

@@ -28,11 +28,11 @@
 #include <vector>
 
 #include "clients/cli/client.h"
+#include "engine/analysis/functional.h"
 #include "engine/cli/arguments.h"
 #include "engine/io/model_io.h"
 #include "engine/io/results_io.h"
 #include "server/convert.h"
-#include "server/functional.h"
 #include "server/status.h"
 
 namespace {
