@@ -1,7 +1,7 @@
 #pragma once
 // What one run gives back (pfem::run, engine/analysis/run.h): response and sensitivity histories
 // and a summary. Plain data: written to files by engine/io/results_io.h, carried on the wire by
-// server/convert.h.
+// wire/convert.h.
 #include <string>
 #include <vector>
 
