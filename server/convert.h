@@ -1,7 +1,6 @@
 #pragma once
-// Conversions between the engine's types (engine/analysis/run.h) and the wire (pfem.v1),
-// shared by the server, pfemctl and the tests. Header-only engine types: linking the engine
-// is not needed for these.
+// The service's requests -> the engine: run options, parameter values and their checks. The
+// conversions of results both ways, shared with the clients, are wire/convert.h.
 #include <string>
 #include <vector>
 
@@ -10,17 +9,6 @@
 #include "pfem/v1/service.pb.h"
 
 namespace pfem::server {
-
-pfem::v1::Histories to_proto(const Histories& histories);
-Histories from_proto(const pfem::v1::Histories& histories);
-pfem::v1::Summary to_proto(const RunSummary& summary);
-RunSummary from_proto(const pfem::v1::Summary& summary);
-pfem::v1::Result to_proto(const RunResult& result);
-RunResult from_proto(const pfem::v1::Result& result);
-pfem::v1::Progress to_proto(const Progress& progress);
-
-SensitivityMethod from_proto(pfem::v1::SensitivityMethod method, SensitivityMethod fallback);
-pfem::v1::SensitivityMethod to_proto(SensitivityMethod method);
 
 // The engine options of a wire request (no progress, no cancel flag, one thread).
 RunOptions to_run_options(const pfem::v1::RunOptions& options, SensitivityMethod fallback);

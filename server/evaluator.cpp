@@ -2,11 +2,12 @@
 
 #include <chrono>
 
+#include "engine/analysis/functional.h"
 #include "server/convert.h"
-#include "server/functional.h"
 #include "server/hashing.h"
 #include "server/requests.h"
 #include "server/status.h"
+#include "wire/convert.h"
 
 namespace pfem::server {
 namespace {
@@ -91,7 +92,7 @@ void Evaluator::evaluate(const pfem::v1::EvaluateRequest& request, const StopFun
                                                summary.parameter_values.end());
   response->set_cached(hit);
   response->set_run_key(key);
-  *response->mutable_summary() = to_proto(summary);
+  *response->mutable_summary() = wire::to_proto(summary);
   response->set_wall_seconds(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
 }

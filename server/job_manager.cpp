@@ -6,6 +6,7 @@
 
 #include "server/convert.h"
 #include "server/status.h"
+#include "wire/convert.h"
 
 namespace pfem::server {
 namespace {
@@ -339,14 +340,14 @@ void JobManager::run_job(const std::shared_ptr<ActiveJob>& entry) {
         request->has_timeout_seconds() ? std::optional<double>(request->timeout_seconds())
                                        : std::nullopt;
     options.progress = [entry, started, timeout](const Progress& p) {
-      entry->update_progress([&](pfem::v1::Job& job) { *job.mutable_progress() = to_proto(p); });
+      entry->update_progress([&](pfem::v1::Job& job) { *job.mutable_progress() = wire::to_proto(p); });
       if (timeout && std::chrono::duration<double>(std::chrono::steady_clock::now() - started)
                              .count() > *timeout) {
         entry->timed_out = true;
         entry->cancel = true;
       }
     };
-    result = to_proto(run_(model, options));
+    result = wire::to_proto(run_(model, options));
   } catch (const ModelError& e) {
     failure = std::string("invalid model: ") + e.what();
   } catch (const std::exception& e) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "engine/analysis/run_estimate.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
 #include "engine/io/model_warnings.h"

@@ -10,6 +10,7 @@
 //                               (the database or the disk)
 //   std::bad_alloc           -> RESOURCE_EXHAUSTED "out of memory"
 //   anything else            -> INTERNAL (the detail goes to the server log only)
+// The codes' names (for logs and the CLI) are wire/status_name.h, shared with the clients.
 #include <grpcpp/support/status.h>
 
 #include <functional>
@@ -51,8 +52,5 @@ grpc::Status status_from_current_exception();
 
 // Runs body; returns its status, or the converted exception it threw.
 grpc::Status guarded(const std::function<grpc::Status()>& body);
-
-// "INVALID_ARGUMENT", "NOT_FOUND", ... (for logs and the CLI).
-std::string status_code_name(grpc::StatusCode code);
 
 }  // namespace pfem::server

@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "clients/cli/client.h"
+#include "engine/analysis/functional.h"
 #include "engine/cli/arguments.h"
 #include "engine/io/model_io.h"
-#include "server/functional.h"
 #include "bench/service/bench_server.h"
 
 namespace {

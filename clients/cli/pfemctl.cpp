@@ -28,12 +28,12 @@
 #include <vector>
 
 #include "clients/cli/client.h"
+#include "engine/analysis/functional.h"
 #include "engine/cli/arguments.h"
 #include "engine/io/model_io.h"
 #include "engine/io/results_io.h"
-#include "server/convert.h"
-#include "server/functional.h"
-#include "server/status.h"
+#include "wire/convert.h"
+#include "wire/status_name.h"
 
 namespace {
 
@@ -201,7 +201,7 @@ class Ctl {
     pfem::v1::Result result;
     pfem::v1::Job job;
     check(pfem::client::fetch_result(*stub_, options_, a.positional(1), &result, &job));
-    pfem::write_results(pfem::server::from_proto(result), *out);
+    pfem::write_results(pfem::wire::from_proto(result), *out);
     std::cout << "wrote " << *out << ": " << result.responses().time_size() << " samples of "
               << result.responses().columns_size() << " responses";
     if (result.sensitivities().columns_size() > 0) {
@@ -401,7 +401,7 @@ int main(int argc, char** argv) {
     if (command == "evaluate") return ctl.evaluate(a);
     throw UsageError("unknown command '" + command + "'");
   } catch (const CallFailed& e) {
-    std::cerr << "pfemctl: " << pfem::server::status_code_name(e.status.error_code()) << ": "
+    std::cerr << "pfemctl: " << pfem::wire::status_code_name(e.status.error_code()) << ": "
               << e.status.error_message() << '\n';
     return 1;
   } catch (const std::invalid_argument& e) {

@@ -3,7 +3,7 @@
 // parameters, for the reliability and optimisation drivers. Two ways to get them, behind one
 // interface:
 //   in-process   pfem::run (engine/analysis/run.h) + pfem::evaluate_functional
-//                (server/functional.h, library pfem_functional: the same code the server uses)
+//                (engine/analysis/functional.h: the same code the server's Evaluate uses)
 //   --server     the gRPC Evaluate of a pfem-server, or of several replicas behind one gRPC
 //                target (round_robin); the model is stored with PutModel and evaluated by id
 // Gradients by DDM (one run with the sensitivity solve) or by central finite differences (FDM:
@@ -20,8 +20,8 @@
 
 #include "clients/reliability/errors.h"
 #include "clients/reliability/simulation_stats.h"
+#include "engine/analysis/functional.h"
 #include "pfem/v1/model.pb.h"
-#include "server/functional.h"
 
 namespace pfem::reliability {
 

@@ -7,7 +7,7 @@
 #include <array>
 #include <vector>
 
-#include "engine/analysis/problem.h"
+#include "engine/io/problem.h"
 
 namespace pfem {
 

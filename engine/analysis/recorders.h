@@ -2,7 +2,7 @@
 // Samples the recorders of a problem into one row of values.
 #include <vector>
 
-#include "engine/analysis/problem.h"
+#include "engine/io/problem.h"
 #include "engine/mesh/remesher.h"
 
 namespace pfem {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/base/field_error.h"
+#include "engine/io/run_result.h"
 #include "pfem/v1/model.pb.h"
 
 namespace pfem {
@@ -66,55 +67,6 @@ struct RunOptions {
   // Every problem of these options by themselves, the flag's name as the path ("t_end: must
   // be > 0"); the parameter names are checked against the model by run().
   std::vector<FieldError> validate() const;
-};
-
-enum class RunStatus { kCompleted, kFailed, kCancelled };
-
-// Histories sampled every analysis.record_every steps (and at t = 0).
-struct Histories {
-  std::vector<std::string> columns;        // without the leading "time"
-  std::vector<double> time;                // one entry per row
-  std::vector<std::vector<double>> rows;   // rows[i][j]: column j at time[i]
-};
-
-struct RunSummary {
-  RunStatus status = RunStatus::kCompleted;
-  std::string message;      // why a run failed or was cancelled (empty when completed)
-  int failed_step = -1;     // step at which it failed, -1 otherwise
-  double failed_time = 0.0;
-  int steps = 0;
-  double t_end = 0.0;
-  double dt = 0.0;
-  double wall_seconds = 0.0;
-  double response_seconds = 0.0;
-  double sensitivity_seconds = 0.0;
-  double remesh_seconds = 0.0;     // split of response_seconds
-  double assemble_seconds = 0.0;
-  double factorize_seconds = 0.0;
-  double solve_seconds = 0.0;
-  long newton_iterations = 0;  // of every attempt, failed ones before a halving included
-  long factorizations = 0;
-  int substeps = 0;         // steps split in halves after a failed Newton solve
-  int removed_particles = 0;   // taken out for coming too close to another node, or for crossing a wall
-  int inserted_particles = 0;  // added in the middle of stretched edges
-  int left_domain = 0;         // removed for leaving the domain (domain.on_exit "remove")
-  // Largest |A(t) / (A(0) - A_left(t)) - 1| over the steps: the drift of the water that stays.
-  double fluid_area_max_drift = 0.0;
-  std::vector<std::string> warnings;  // e.g. the fluid area drifted by more than kAreaDriftWarning
-  int particles = 0;
-  int max_elements = 0;
-  double fluid_area_initial = 0.0;
-  double fluid_area_final = 0.0;
-  double fluid_area_left = 0.0;  // A_left: the mesh area the particles that left the domain held
-  std::string sensitivity_method;       // "none", "ddm" or "fdm"
-  std::vector<std::string> parameters;  // names differentiated
-  std::vector<double> parameter_values;
-};
-
-struct RunResult {
-  Histories responses;      // columns: recorder names
-  Histories sensitivities;  // columns: "d<recorder>/d<param>", empty without sensitivity
-  RunSummary summary;
 };
 
 // Runs the model. Throws ModelError (engine/io/model_io.h) when the model or the options are

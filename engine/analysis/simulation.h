@@ -4,7 +4,7 @@
 #include <string>
 
 #include "engine/analysis/checkpoint.h"
-#include "engine/analysis/problem.h"
+#include "engine/io/problem.h"
 #include "engine/analysis/run.h"
 
 namespace pfem {

@@ -31,6 +31,7 @@
 #include "engine/analysis/checkpoint.h"
 #include "engine/analysis/gradient_check.h"
 #include "engine/analysis/run.h"
+#include "engine/analysis/run_estimate.h"
 #include "engine/cli/arguments.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"

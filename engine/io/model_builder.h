@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/analysis/problem.h"
+#include "engine/io/problem.h"
 #include "engine/io/model_io.h"
 #include "pfem/v1/model.pb.h"
 

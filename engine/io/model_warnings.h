@@ -1,7 +1,7 @@
 #pragma once
 // What `pfem validate` says about a valid model beyond its errors: warnings for values that
-// are allowed but implausible (they validate and then fail, or lose water, later), and an
-// estimate of the run's size and time.
+// are allowed but implausible (they validate and then fail, or lose water, later). The estimate
+// of the run's size and time is engine/analysis/run_estimate.h.
 #include <vector>
 
 #include "engine/io/model_io.h"
@@ -21,17 +21,5 @@ inline constexpr double kMinSoundToFlowSpeed = 10.0;      // sqrt(kappa/rho) aga
 // deflection as a cantilever under the hydrostatic load of min(H, L) of water exceeds its
 // length L; a recorder point farther than h from every fluid region and from the structure.
 std::vector<FieldError> model_warnings(const pfem::v1::Model& model);
-
-struct RunEstimate {
-  long particles = 0;                 // at t = 0 (estimate_particles)
-  long elements = 0;                  // fluid triangles, about 2 per particle
-  long steps = 0;                     // to t_end
-  double seconds = 0.0;               // response only, one thread
-  double seconds_per_particle_step = 0.0;  // measured on this machine
-};
-
-// The run's size, and its time from this machine's speed, measured on a small reference dam
-// break (about 0.1 s the first time; the figure is kept for later calls in the process).
-RunEstimate estimate_run(const pfem::v1::Model& model);
 
 }  // namespace pfem

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/analysis/run.h"
+#include "engine/io/run_result.h"
 
 namespace pfem {
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "server/convert.h"
+#include "wire/convert.h"
 
 namespace {
 
@@ -33,7 +34,7 @@ pfem::v1::SubmitJobRequest sloshing_request() {
 }
 
 pfem::v1::Result in_process(const pfem::v1::SubmitJobRequest& request) {
-  return pfem::server::to_proto(pfem::run(
+  return pfem::wire::to_proto(pfem::run(
       request.model(), pfem::server::to_run_options(request.options(),
                                                     pfem::SensitivityMethod::kNone)));
 }

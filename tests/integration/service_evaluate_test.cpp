@@ -2,7 +2,7 @@
 // cache, stored models, deadlines.
 #include "tests/integration/service_test_support.h"
 
-#include "server/functional.h"
+#include "engine/analysis/functional.h"
 
 namespace {
 

@@ -2,7 +2,7 @@
 // results, cancellation, timeouts, failures with partial results, the queue limit, listing.
 #include "tests/integration/service_test_support.h"
 
-#include "server/convert.h"
+#include "wire/convert.h"
 
 namespace {
 
@@ -45,7 +45,7 @@ pfem::v1::Result run_in_process(pfem::SensitivityMethod method, std::vector<std:
   pfem::RunOptions options;
   options.sensitivity = method;
   options.params = std::move(params);
-  return pfem::server::to_proto(pfem::run(model, options));
+  return pfem::wire::to_proto(pfem::run(model, options));
 }
 
 TEST(ServiceJobs, SubmitWatchResultMatchesAnInProcessRun) {

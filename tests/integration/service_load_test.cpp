@@ -5,7 +5,7 @@
 
 #include <mutex>
 
-#include "server/functional.h"
+#include "engine/analysis/functional.h"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
-#include "server/functional.h"
+#include "engine/analysis/functional.h"
 #include "tests/integration/service_test_support.h"
 
 namespace {

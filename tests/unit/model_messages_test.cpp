@@ -1,12 +1,14 @@
 // What `pfem validate` tells a user beyond the field rules (engine/io/model_io.cpp,
-// engine/io/model_warnings.cpp): the line and column of a JSON syntax error, "did you mean" for
-// a misspelt field and the right place for a field in the wrong message, every unknown field
-// at once; warnings for implausible values; the run's estimated size and time.
+// engine/io/model_warnings.cpp, engine/analysis/run_estimate.cpp): the line and column of a JSON
+// syntax error, "did you mean" for a misspelt field and the right place for a field in the wrong
+// message, every unknown field at once; warnings for implausible values; the run's estimated
+// size and time.
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
+#include "engine/analysis/run_estimate.h"
 #include "engine/io/model_io.h"
 #include "engine/io/model_size.h"
 #include "engine/io/model_warnings.h"

@@ -9,6 +9,7 @@
 #include "server/limits.h"
 #include "server/options.h"
 #include "server/status.h"
+#include "wire/status_name.h"
 
 namespace {
 
@@ -99,7 +100,7 @@ TEST(ServerStatus, OneMappingForEveryException) {
   const auto internal = guarded([]() -> grpc::Status { throw std::runtime_error("secret"); });
   EXPECT_EQ(internal.error_code(), grpc::StatusCode::INTERNAL);
   EXPECT_EQ(internal.error_message(), "internal error");  // details stay in the log
-  EXPECT_EQ(pfem::server::status_code_name(grpc::StatusCode::UNAUTHENTICATED), "UNAUTHENTICATED");
+  EXPECT_EQ(pfem::wire::status_code_name(grpc::StatusCode::UNAUTHENTICATED), "UNAUTHENTICATED");
 }
 
 TEST(ServerOptions, ValidationNamesTheFlag) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/analysis/run.h"
+#include "engine/analysis/run_estimate.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
 #include "engine/io/model_warnings.h"

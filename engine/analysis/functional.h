@@ -1,7 +1,7 @@
 #pragma once
 // Scalar functionals of a recorder's history and their gradients, from the response and
-// sensitivity histories of one run (pfem::RunResult). Used by the Evaluate RPC; written to be
-// reused by the reliability and optimisation drivers (no gRPC, no I/O).
+// sensitivity histories of one run (pfem::RunResult). Used by the server's Evaluate RPC, pfemctl
+// and the reliability and optimisation drivers (no gRPC, no I/O).
 //
 //   kValueAt  r(t)       linear between the two samples around t; gradient interpolated alike
 //   kFinal    r(t_last)  gradient: the sensitivities at the last sample

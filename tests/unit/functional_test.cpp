@@ -1,7 +1,7 @@
-// Functionals of recorder histories and their gradients (server/functional.h).
+// Functionals of recorder histories and their gradients (engine/analysis/functional.h).
 #include <gtest/gtest.h>
 
-#include "server/functional.h"
+#include "engine/analysis/functional.h"
 
 namespace {
 

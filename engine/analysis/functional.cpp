@@ -1,4 +1,4 @@
-#include "server/functional.h"
+#include "engine/analysis/functional.h"
 
 #include <algorithm>
 #include <cmath>
