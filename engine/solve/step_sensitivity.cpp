@@ -70,8 +70,9 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
   fluid::Vec8 dvn;
   fluid::Vec3 dpn;
   // The volume correction's dilatation (target / A_n - 1) / relaxation depends on the parameter
-  // through the mesh's area at t_n and through the target (the initial area less the water that
-  // left the domain); each corner's source dilatation * thickness * A_e / 3 through it and A_e.
+  // through the mesh's area at t_n and through the target (the initial area less the water in
+  // flight or gone, analysis/water_account.h); each corner's source dilatation * thickness *
+  // A_e / 3 through it and A_e.
   // (At this point the nodes are still at t_n.)
   std::vector<double> darea_e;
   Eigen::VectorXd ddilatation = Eigen::VectorXd::Zero(num_params);
