@@ -14,12 +14,9 @@
 namespace pfem {
 
 double fluid_area(const mesh::FluidMesh& mesh, const NodeState& nodes) {
-  double twice = 0.0;
-  for (const auto& t : mesh.triangles) {
-    const double x1 = nodes.x[t[0]], y1 = nodes.y[t[0]];
-    twice += (nodes.x[t[1]] - x1) * (nodes.y[t[2]] - y1) - (nodes.x[t[2]] - x1) * (nodes.y[t[1]] - y1);
-  }
-  return 0.5 * twice;
+  double area = 0.0;
+  for (const auto& t : mesh.triangles) area += nodes.triangle_area(t);
+  return area;
 }
 
 namespace {
