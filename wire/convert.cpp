@@ -57,6 +57,7 @@ pfem::v1::Summary to_proto(const RunSummary& s) {
   out.set_inserted_particles(s.inserted_particles);
   out.set_left_domain(s.left_domain);
   out.set_fluid_area_max_drift(s.fluid_area_max_drift);
+  out.set_fluid_area_left(s.fluid_area_left);
   for (const auto& w : s.warnings) out.add_warnings(w);
   out.set_particles(s.particles);
   out.set_max_elements(s.max_elements);
@@ -95,6 +96,7 @@ RunSummary from_proto(const pfem::v1::Summary& s) {
   out.inserted_particles = s.inserted_particles();
   out.left_domain = s.left_domain();
   out.fluid_area_max_drift = s.fluid_area_max_drift();
+  out.fluid_area_left = s.fluid_area_left();
   out.warnings.assign(s.warnings().begin(), s.warnings().end());
   out.particles = s.particles();
   out.max_elements = s.max_elements();
