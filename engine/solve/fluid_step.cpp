@@ -32,19 +32,6 @@ std::uint64_t triangle_key(const std::array<std::int32_t, 3>& t) {
   return n[0] | (n[1] << 21) | (n[2] << 42);
 }
 
-// Whether segments pq and ab cross or touch (their boxes overlap and each straddles the other's
-// line; the box test also keeps collinear segments apart on their common line from counting).
-bool segments_cross(double px, double py, double qx, double qy, double ax, double ay, double bx, double by) {
-  if (std::max(px, qx) < std::min(ax, bx) || std::max(ax, bx) < std::min(px, qx) || std::max(py, qy) < std::min(ay, by) ||
-      std::max(ay, by) < std::min(py, qy))
-    return false;
-  const auto orient = [](double ux, double uy, double vx, double vy, double wx, double wy) {
-    return (vx - ux) * (wy - uy) - (vy - uy) * (wx - ux);
-  };
-  const double d1 = orient(ax, ay, bx, by, px, py), d2 = orient(ax, ay, bx, by, qx, qy);
-  const double d3 = orient(px, py, qx, qy, ax, ay), d4 = orient(px, py, qx, qy, bx, by);
-  return ((d1 > 0) != (d2 > 0) || d1 == 0 || d2 == 0) && ((d3 > 0) != (d4 > 0) || d3 == 0 || d4 == 0);
-}
 }  // namespace
 
 void UnifiedStep::number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes, const StepSettings& s) {
@@ -496,62 +483,25 @@ void UnifiedStep::add_structure_tangent(const StepSettings& s, const structure::
   model->add_tangent(add, s.dt);  // at the trial state of the last residual
 }
 
-bool UnifiedStep::crosses_wall(const StepSettings& s, double px, double py, double qx, double qy) const {
-  const auto end_x = [&](int j) { return xn_[j] + s.dt * velocity_x(j); };
-  const auto end_y = [&](int j) { return yn_[j] + s.dt * velocity_y(j); };
-  const auto node_moves = [&](int j) {
-    return vx_dof_[j] >= 0 || vy_dof_[j] >= 0 || wall_velocity(j, 0) != 0.0 || wall_velocity(j, 1) != 0.0;
-  };
-  for (const auto& [a, b] : s.walls) {
-    if (segments_cross(px, py, qx, qy, xn_[a], yn_[a], xn_[b], yn_[b])) return true;
-    const bool moves = node_moves(a) || node_moves(b);
-    if (moves && segments_cross(px, py, qx, qy, end_x(a), end_y(a), end_x(b), end_y(b))) return true;
-  }
-  return false;
-}
-
 void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
   // A particle whose move crosses a wall or beam hits it (advance() takes it out): typically a
   // splash particle reaching the floor or the obstacle's back, in free-surface triangles that
   // have no pressure to stop it, or in none on that edge at all (the alpha test drops the
   // sliver it would make). A shorter step only brings it closer.
-  const auto crosses = [&](int i) {
-    return crosses_wall(s, xn_[i], yn_[i], xn_[i] + s.dt * v_[vx_dof_[i]], yn_[i] + s.dt * v_[vy_dof_[i]]);
-  };
-  // Only particles sharing a triangle with a wall or structure node are near enough to cross.
-  hits_wall_.assign(nodes.size(), 0);
-  for (const auto& t : mesh.triangles) {
-    const bool by_wall = nodes.kind[t[0]] != mesh::NodeKind::Fluid || nodes.kind[t[1]] != mesh::NodeKind::Fluid ||
-                         nodes.kind[t[2]] != mesh::NodeKind::Fluid;
-    for (int a = 0; by_wall && a < 3; ++a) {
-      const int i = t[a];
-      if (nodes.kind[i] == mesh::NodeKind::Fluid && !hits_wall_[i] && crosses(i)) hits_wall_[i] = 1;
-    }
+  std::vector<double> x1(nodes.size()), y1(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    x1[i] = xn_[i] + s.dt * velocity_x(static_cast<int>(i));
+    y1[i] = yn_[i] + s.dt * velocity_y(static_cast<int>(i));
   }
+  const StepEnds ends{xn_, yn_, x1, y1};
+  walls_ = wall_pieces(s.walls, ends);
+  hits_wall_ = particles_crossing_walls(mesh.triangles, nodes.kind, ends, walls_);
   // An inverted triangle is no solution of the step (retried shorter), unless a particle of it
   // crossed a wall: that move is not made.
   for (std::size_t e = 0; e < geometries_.size(); ++e) {
     const auto& t = mesh.triangles[e];
     if (!(geometries_[e].A > 0.0) && !hits_wall_[t[0]] && !hits_wall_[t[1]] && !hits_wall_[t[2]])
       throw StepFailure("a triangle inverted within the step");
-  }
-}
-
-void UnifiedStep::move_free_particles(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const {
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (nodes.kind[i] != mesh::NodeKind::Fluid || mesh.in_mesh[i]) continue;
-    const double vx = nodes.vx[i] + s.dt * s.gx, vy = nodes.vy[i] + s.dt * s.gy;
-    const double x = xn_[i] + s.dt * vx, y = yn_[i] + s.dt * vy;
-    const bool hits = crosses_wall(s, xn_[i], yn_[i], x, y);
-    nodes.vx[i] = hits ? 0.0 : vx, nodes.vy[i] = hits ? 0.0 : vy;
-    nodes.x[i] = hits ? xn_[i] : x, nodes.y[i] = hits ? yn_[i] : y;
-    // Sensitivities follow the same rule (gravity is no parameter).
-    for (int k = 0; k < nodes.num_params; ++k) {
-      double* d = nodes.sensitivity(i, k);
-      if (hits) d[NodeState::kDvx] = d[NodeState::kDvy] = 0.0;
-      d[NodeState::kDx] += s.dt * d[NodeState::kDvx];
-      d[NodeState::kDy] += s.dt * d[NodeState::kDvy];
-    }
   }
 }
 
@@ -697,7 +647,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   for (std::size_t i = 0; i < nodes.size(); ++i) nodes.p[i] = pdof_[i] >= 0 ? p_[pdof_[i]] : 0.0;
   if (num_params > 0) commit_sensitivities(s, nodes);
   if (s.structure.model) s.structure.model->commit();
-  move_free_particles(mesh, s, nodes);
+  move_free_particles(mesh.in_mesh, walls_, {s.gx, s.gy}, s.dt, nodes);
   bubbles_by_triangle_.clear();
   bubble_sensitivity_by_triangle_.clear();
   for (int e = 0; e < ne; ++e) {

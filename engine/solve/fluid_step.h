@@ -47,6 +47,7 @@
 #include "engine/solve/linear_solvers.h"
 #include "engine/solve/node_state.h"
 #include "engine/solve/supernodal_ldlt.h"
+#include "engine/solve/wall_guard.h"
 #include "engine/structure/structure_model.h"
 
 namespace pfem {
@@ -208,14 +209,9 @@ class UnifiedStep {
                        Eigen::MatrixXd& dv, Eigen::MatrixXd& dp) const;
   // A converged state with an inverted triangle is no solution of the PFEM step: throws
   // StepFailure so that the step is retried shorter. A particle whose converged move crosses a
-  // wall or beam is marked in hits_wall_ instead (its triangles may invert): it is removed.
+  // wall or beam is marked in hits_wall_ instead (its triangles may invert): it is removed. Sets
+  // walls_ (engine/solve/wall_guard.h) for the particles outside the mesh.
   void check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
-  // Whether the move (px, py) -> (qx, qy) within the step crosses or touches a wall or beam
-  // piece; a beam's piece counts where it was at t_n and where the step's velocities take it.
-  bool crosses_wall(const StepSettings& s, double px, double py, double qx, double qy) const;
-  // Moves the particles outside the mesh ballistically; one whose path crosses a wall or beam
-  // stops where it was (it hits the wall and sticks, as water does at a no-slip wall).
-  void move_free_particles(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const;
   // The exact Jacobian at the current iterate (engine/solve/step_sensitivity.cpp): H and T per
   // element (kept in geometric_; zero without geometric terms) and the structure's consistent
   // tangent, condensed like the response's matrix. (As a Newton matrix it did not pay: the
@@ -242,6 +238,7 @@ class UnifiedStep {
   int n_node_v_ = 0, n_v_ = 0, n_p_ = 0;
   std::vector<double> xn_, yn_, vxn_, vyn_, pn_;  // state at t_n (per node)
   std::vector<std::uint8_t> hits_wall_;           // per node: hits a wall (check_admissible)
+  std::vector<WallPiece> walls_;                  // the walls and beams at t_n and t_{n+1} (ditto)
   std::span<const double> wall_velocity_;         // StepSettings::wall_velocity of this step
   // Volume correction: the dilatation [1/s], the mesh's area at t_n and each element's area there.
   double dilatation_ = 0.0, area_n_ = 0.0, source_scale_ = 0.0;
