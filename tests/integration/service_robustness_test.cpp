@@ -136,8 +136,9 @@ TEST(ServiceRobustness, ACancelAcknowledgedAtTheRunsLastStepIsKept) {
 }
 
 // A database at its cap (--max-store-mb; SQLite answers SQLITE_FULL as for a full disk): a
-// result too big to store ends its job FAILED (stored, without the result), and a request too
-// big to store is RESOURCE_EXHAUSTED, not INTERNAL.
+// result too big to store ends its job FAILED (stored, without the result: a restart finds it
+// FAILED instead of running it again), and a request too big to store is RESOURCE_EXHAUSTED,
+// not INTERNAL.
 TEST(ServiceRobustness, AFullStoreIsResourceExhaustedAndJobsEndFailed) {
   TempDir dir("robust_full");
   FakeEngine engine;
@@ -145,23 +146,40 @@ TEST(ServiceRobustness, AFullStoreIsResourceExhaustedAndJobsEndFailed) {
   engine.rows = 200000;  // 200k rows x 2 columns: a result of about 3 MB
   auto options = local_options(dir.path);
   options.max_store_mb = 1;
-  pfem::server::Server server(options, engine.function());
-  auto stub = make_stub(server.address());
   std::string id;
-  ASSERT_TRUE(submit(*stub, fake_request(), &id).ok());
-  const auto job = watch_to_end(*stub, id);
-  EXPECT_EQ(job.state(), pfem::v1::JOB_STATE_FAILED);
-  EXPECT_NE(job.error().message().find("database or disk is full"), std::string::npos)
-      << job.error().message();
-  const auto stored = server.jobs().get(id);
-  EXPECT_EQ(stored.state(), pfem::v1::JOB_STATE_FAILED);
+  {
+    pfem::server::Server server(options, engine.function());
+    auto stub = make_stub(server.address());
+    ASSERT_TRUE(submit(*stub, fake_request(), &id).ok());
+    const auto job = watch_to_end(*stub, id);
+    EXPECT_EQ(job.state(), pfem::v1::JOB_STATE_FAILED);
+    EXPECT_NE(job.error().message().find("database or disk is full"), std::string::npos)
+        << job.error().message();
 
-  auto big = fake_request();
-  big.mutable_model()->set_description(std::string(2 << 20, 'x'));
-  std::string big_id;
-  const auto status = submit(*stub, big, &big_id);
-  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << status.error_message();
-  EXPECT_TRUE(mentions(status, "full"));
+    auto big = fake_request();
+    big.mutable_model()->set_description(std::string(2 << 20, 'x'));
+    std::string big_id;
+    const auto status = submit(*stub, big, &big_id);
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << status.error_message();
+    EXPECT_TRUE(mentions(status, "full"));
+  }
+  // The FAILED end is in the store, not only in the server that ran the job (issue 20: such a
+  // job stayed RUNNING and ran again after a restart).
+  pfem::server::Server restarted(options, engine.function());
+  auto stub = make_stub(restarted.address());
+  pfem::v1::JobRequest request;
+  request.set_job_id(id);
+  pfem::v1::Job stored;
+  grpc::ClientContext context;
+  ASSERT_TRUE(stub->GetJob(&context, request, &stored).ok());
+  EXPECT_EQ(stored.state(), pfem::v1::JOB_STATE_FAILED) << pfem::v1::JobState_Name(stored.state());
+  EXPECT_EQ(stored.attempts(), 1);
+  EXPECT_NE(stored.error().message().find("the job's end could not be stored: database or disk "
+                                          "is full"),
+            std::string::npos)
+      << stored.error().message();
+  EXPECT_EQ(restarted.jobs().queued() + restarted.jobs().running(), 0);
+  EXPECT_EQ(engine.runs->load(), 1);
 }
 
 // One unreadable finished row and one unreadable queued row: the server starts, ListJobs lists
@@ -270,6 +288,19 @@ TEST(ServiceRobustness, LongErrorListsAreTruncatedIntoTheStatusMessage) {
   EXPECT_TRUE(mentions(status, " more ("));
   EXPECT_LE(status.error_message().size(), pfem::server::kMaxStatusMessageBytes);
 
+  // 150 unknown parameter values: an error each, the first ones kept and the count of all.
+  auto values = fake_request();
+  for (int i = 0; i < 150; ++i) {
+    auto* v = values.add_parameter_values();
+    v->set_name("q" + std::to_string(i));
+    v->set_value(1.0);
+  }
+  const auto unknown = submit(*stub, values, &id);
+  EXPECT_EQ(unknown.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << unknown.error_message();
+  EXPECT_TRUE(mentions(unknown, "parameter_values[0].name: no parameter 'q0' in the model\n"));
+  EXPECT_TRUE(mentions(unknown, " more (150 in all)"));
+  EXPECT_LE(unknown.error_message().size(), pfem::server::kMaxStatusMessageBytes);
+
   grpc::ClientContext context;
   pfem::v1::JobRequest job_request;
   job_request.set_job_id(std::string(1 << 20, 'a'));
@@ -348,9 +379,12 @@ TEST(ServiceRobustness, ModelCostIsBoundedBeforeValidationStarts) {
 
 // Two wall points 1e-9 m apart (1e-7 h) validated, then every run failed in the remesher
 // ("constraint 0 (0, 0) needs two different node indices") and Evaluate answered INTERNAL.
+// The real engine, so that a model the checks let through would reach the remesher.
 TEST(ServiceRobustness, NearDuplicateWallPointsAreAFieldError) {
   TempDir dir("robust_near");
-  pfem::server::Server server(local_options(dir.path), FakeEngine{}.function());
+  auto options = local_options(dir.path);
+  options.workers = 1;
+  pfem::server::Server server(options);
   auto stub = make_stub(server.address());
   auto request = fake_request();
   auto* points = request.mutable_model()->mutable_walls(0)->mutable_points();
@@ -362,6 +396,18 @@ TEST(ServiceRobustness, NearDuplicateWallPointsAreAFieldError) {
   const auto status = submit(*stub, request, &id);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << status.error_message();
   EXPECT_TRUE(mentions(status, "walls[0].points[1]: is only 1e-09 m from the previous point"));
+
+  grpc::ClientContext context;
+  pfem::v1::EvaluateRequest evaluate;
+  *evaluate.mutable_model() = request.model();
+  auto* f = evaluate.add_functionals();
+  f->set_recorder("bottom_p");
+  f->set_kind(pfem::v1::Functional::KIND_MAX);
+  pfem::v1::EvaluateResponse response;
+  const auto evaluated = stub->Evaluate(&context, evaluate, &response);
+  EXPECT_EQ(evaluated.error_code(), grpc::StatusCode::INVALID_ARGUMENT)
+      << evaluated.error_message();
+  EXPECT_TRUE(mentions(evaluated, "walls[0].points[1]: is only 1e-09 m from the previous point"));
 }
 
 }  // namespace
