@@ -53,13 +53,30 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
   };
   // The node at (x, y) of wall wi: an existing one there when both walls are fixed, or it is the
   // same wall's, or a moving wall's hinge.
+  // The wall nodes by square cell of side h: one within merge (<< h) of a point is in the point's
+  // cell or a neighbour's, so finding it costs no scan of every node (that made building a model
+  // grow with the square of its wall nodes).
+  std::map<std::pair<double, double>, std::vector<std::int32_t>> cells;
+  const auto cell = [h](double x, double y) { return std::pair{std::floor(x / h), std::floor(y / h)}; };
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (nodes.kind[i] == NodeKind::Wall) cells[cell(nodes.x[i], nodes.y[i])].push_back(static_cast<std::int32_t>(i));
   auto add_unique = [&](int wi, double x, double y) -> std::int32_t {
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      if (nodes.kind[i] != NodeKind::Wall || std::hypot(nodes.x[i] - x, nodes.y[i] - y) >= merge) continue;
-      const int other = owner[i];
-      if (other == wi || (!moving(wi) && !moving(other)) || (moving(wi) ? fixed_point(wi, x, y) : fixed_point(other, x, y)))
-        return static_cast<std::int32_t>(i);
-    }
+    // The first node (the lowest index) that (x, y) joins, as a scan in node order finds it.
+    std::int32_t found = -1;
+    const auto [cx, cy] = cell(x, y);
+    for (double dx : {-1.0, 0.0, 1.0})
+      for (double dy : {-1.0, 0.0, 1.0}) {
+        const auto it = cells.find({cx + dx, cy + dy});
+        if (it == cells.end()) continue;
+        for (const std::int32_t i : it->second) {
+          if ((found >= 0 && i > found) || std::hypot(nodes.x[i] - x, nodes.y[i] - y) >= merge) continue;
+          const int other = owner[i];
+          if (other == wi || (!moving(wi) && !moving(other)) ||
+              (moving(wi) ? fixed_point(wi, x, y) : fixed_point(other, x, y)))
+            found = i;
+        }
+      }
+    if (found >= 0) return found;
     // A wall node where a structure node stands (a beam clamped on the floor) takes its exact
     // place and holds v = 0 (a corner): the remesher merges the two, and a node a rounding away
     // would make a needle beside the beam's foot, a slip one moving along the floor under it.
@@ -67,6 +84,7 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
     for (const auto& sn : model.structure().nodes())
       if (std::hypot(sn.x() - x, sn.y() - y) < merge) x = sn.x(), y = sn.y(), under_structure = true;
     const std::int32_t node = nodes.add(x, y, NodeKind::Wall);
+    cells[cell(x, y)].push_back(node);
     owner.resize(nodes.size(), wi);
     uses.resize(nodes.size(), 0);
     uses[node] += under_structure;
