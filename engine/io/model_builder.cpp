@@ -51,8 +51,6 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
     const auto& m = model.walls(wall).motion();
     return m.kind() == "flap" && std::hypot(m.hinge().x() - x, m.hinge().y() - y) < merge;
   };
-  // The node at (x, y) of wall wi: an existing one there when both walls are fixed, or it is the
-  // same wall's, or a moving wall's hinge.
   // The wall nodes by square cell of side h: one within merge (<< h) of a point is in the point's
   // cell or a neighbour's, so finding it costs no scan of every node (that made building a model
   // grow with the square of its wall nodes).
@@ -60,8 +58,10 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
   const auto cell = [h](double x, double y) { return std::pair{std::floor(x / h), std::floor(y / h)}; };
   for (std::size_t i = 0; i < nodes.size(); ++i)
     if (nodes.kind[i] == NodeKind::Wall) cells[cell(nodes.x[i], nodes.y[i])].push_back(static_cast<std::int32_t>(i));
+  // The node at (x, y) of wall wi: an existing one there when both walls are fixed, or it is the
+  // same wall's, or a moving wall's hinge.
   auto add_unique = [&](int wi, double x, double y) -> std::int32_t {
-    // The first node (the lowest index) that (x, y) joins, as a scan in node order finds it.
+    // The first node (the lowest index) that (x, y) joins, as a scan in node order would find it.
     std::int32_t found = -1;
     const auto [cx, cy] = cell(x, y);
     for (double dx : {-1.0, 0.0, 1.0})
