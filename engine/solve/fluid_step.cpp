@@ -67,13 +67,11 @@ void UnifiedStep::number_unknowns(const mesh::FluidMesh& mesh, const NodeState& 
   n_v_ = n_node_v_ + 2 * static_cast<int>(mesh.triangles.size());
 }
 
-void UnifiedStep::volume_correction(const mesh::FluidMesh& mesh, const StepSettings& s) {
+void UnifiedStep::volume_correction(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
   element_area_n_.resize(mesh.triangles.size());
   area_n_ = 0.0;
   for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
-    const auto& t = mesh.triangles[e];
-    element_area_n_[e] = 0.5 * ((xn_[t[1]] - xn_[t[0]]) * (yn_[t[2]] - yn_[t[0]]) -
-                                (xn_[t[2]] - xn_[t[0]]) * (yn_[t[1]] - yn_[t[0]]));
+    element_area_n_[e] = nodes.triangle_area(mesh.triangles[e]);  // the nodes are at t_n
     area_n_ += element_area_n_[e];
   }
   dilatation_ = s.target_area > 0.0 && s.volume_relaxation > 0.0 && area_n_ > 0.0
@@ -513,7 +511,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   wall_velocity_ = s.wall_velocity;
   if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
   number_unknowns(mesh, nodes, s);
-  volume_correction(mesh, s);
+  volume_correction(mesh, s, nodes);
   report.velocity_unknowns = n_v_;
   report.pressure_unknowns = n_p_;
 

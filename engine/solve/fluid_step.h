@@ -164,7 +164,7 @@ class UnifiedStep {
   // cannot be updated so.
   bool update_structure_tangent(const StepSettings& s);
   // The volume correction's dilatation for this step, from the mesh's area at t_n.
-  void volume_correction(const mesh::FluidMesh& mesh, const StepSettings& s);
+  void volume_correction(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
   // Every element's geometry and residual at the current iterate (in parallel).
   void element_terms(const mesh::FluidMesh& mesh, const StepSettings& s);
   // Every element's matrices at the geometry of the last element_terms (once per iterate).
