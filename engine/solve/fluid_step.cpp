@@ -20,52 +20,11 @@ using Clock = std::chrono::steady_clock;
 // finite-difference runs took differently.
 constexpr double kRoundoff = 1024 * std::numeric_limits<double>::epsilon();
 constexpr double kStructureTangentChange = 1e-3;  // see update_structure_tangent
-constexpr int kStallWindow = 10;  // iterations in which the residual must at least halve
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-// The sorted node triple of a triangle packed in 64 bits (node indices below 2^21).
-std::uint64_t triangle_key(const std::array<std::int32_t, 3>& t) {
-  std::array<std::uint64_t, 3> n{static_cast<std::uint64_t>(t[0]), static_cast<std::uint64_t>(t[1]),
-                                 static_cast<std::uint64_t>(t[2])};
-  std::sort(n.begin(), n.end());
-  return n[0] | (n[1] << 21) | (n[2] << 42);
-}
 
 }  // namespace
-
-void UnifiedStep::number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes, const StepSettings& s) {
-  const std::size_t n = nodes.size();
-  vx_dof_.assign(n, -1);
-  vy_dof_.assign(n, -1);
-  pdof_.assign(n, -1);
-  n_node_v_ = 0;
-  n_p_ = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!mesh.in_mesh[i]) continue;
-    if (!nodes.is_fixed(i) && nodes.kind[i] != mesh::NodeKind::Structure)
-      vx_dof_[i] = n_node_v_++, vy_dof_[i] = n_node_v_++;
-    else if (nodes.kind[i] == mesh::NodeKind::Wall && i < s.slip.size() && s.slip[i] == kSlipX)
-      vx_dof_[i] = n_node_v_++;
-    else if (nodes.kind[i] == mesh::NodeKind::Wall && i < s.slip.size() && s.slip[i] == kSlipY)
-      vy_dof_[i] = n_node_v_++;
-    pdof_[i] = n_p_++;  // on the free surface too (see the header)
-  }
-  // Structure nodes move with the structure whether or not water touches them; a supported
-  // dof has no unknown. Their velocity unknowns are the fluid's at the same node.
-  const auto* model = s.structure.model;
-  s_dof_.assign(model ? model->num_dofs() : 0, -1);
-  for (std::size_t k = 0; k < s.structure.node.size(); ++k) {
-    for (int c = 0; c < 3; ++c) {
-      const int dof = 3 * static_cast<int>(k) + c;
-      if (model->is_fixed(dof)) continue;
-      s_dof_[dof] = n_node_v_++;
-      if (c == 0) vx_dof_[s.structure.node[k]] = s_dof_[dof];
-      if (c == 1) vy_dof_[s.structure.node[k]] = s_dof_[dof];
-    }
-  }
-  n_v_ = n_node_v_ + 2 * static_cast<int>(mesh.triangles.size());
-}
 
 void UnifiedStep::volume_correction(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
   element_area_n_.resize(mesh.triangles.size());
@@ -114,7 +73,7 @@ fluid::ElementState UnifiedStep::element_state(const mesh::FluidMesh& mesh, int 
   fluid::ElementState st;
   const auto& tri = mesh.triangles[e];
   for (int a = 0; a < 3; ++a) {
-    const int i = tri[a], q = pdof_[i];
+    const int i = tri[a], q = num_.p[i];
     st.v(2 * a) = velocity_x(i);
     st.v(2 * a + 1) = velocity_y(i);
     st.vn(2 * a) = vxn_[i];
@@ -122,7 +81,7 @@ fluid::ElementState UnifiedStep::element_state(const mesh::FluidMesh& mesh, int 
     st.p(a) = q >= 0 ? p_[q] : 0.0;
     st.pn(a) = pn_[i];
   }
-  const int b = n_node_v_ + 2 * e;
+  const int b = num_.bubble(e);
   st.v(6) = v_[b], st.v(7) = v_[b + 1];
   st.vn.tail<2>() = vbn_[e];
   return st;
@@ -131,20 +90,20 @@ fluid::ElementState UnifiedStep::element_state(const mesh::FluidMesh& mesh, int 
 double UnifiedStep::wall_velocity(int i, int c) const {
   return wall_velocity_.empty() ? 0.0 : wall_velocity_[2 * static_cast<std::size_t>(i) + c];
 }
-double UnifiedStep::velocity_x(int i) const { return vx_dof_[i] >= 0 ? v_[vx_dof_[i]] : wall_velocity(i, 0); }
-double UnifiedStep::velocity_y(int i) const { return vy_dof_[i] >= 0 ? v_[vy_dof_[i]] : wall_velocity(i, 1); }
+double UnifiedStep::velocity_x(int i) const { return num_.vx[i] >= 0 ? v_[num_.vx[i]] : wall_velocity(i, 0); }
+double UnifiedStep::velocity_y(int i) const { return num_.vy[i] >= 0 ? v_[num_.vy[i]] : wall_velocity(i, 1); }
 
 void UnifiedStep::residuals(const mesh::FluidMesh& mesh) {
-  rv_.setZero(n_v_);
-  rp_.setZero(n_p_);
-  rp_abs_.setZero(n_p_);
-  mp_.setZero(n_p_);
+  rv_.setZero(num_.velocities);
+  rp_.setZero(num_.pressures);
+  rp_abs_.setZero(num_.pressures);
+  mp_.setZero(num_.pressures);
   const int ne = static_cast<int>(mesh.triangles.size());
   for (int e = 0; e < ne; ++e) {
     const auto& r = element_residuals_[e];
     const auto& tri = mesh.triangles[e];
     for (int a = 0; a < 3; ++a) {
-      const int i = tri[a], dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];
+      const int i = tri[a], dx = num_.vx[i], dy = num_.vy[i], q = num_.p[i];
       if (dx >= 0) rv_[dx] += r.rv(2 * a);
       if (dy >= 0) rv_[dy] += r.rv(2 * a + 1);
       if (q >= 0) rp_[q] += r.rp(a), rp_abs_[q] += r.rp_abs(a), mp_[q] += r.mp;
@@ -153,21 +112,10 @@ void UnifiedStep::residuals(const mesh::FluidMesh& mesh) {
         rp_[q] += source, rp_abs_[q] += std::abs(source);
       }
     }
-    const int b = n_node_v_ + 2 * e;
+    const int b = num_.bubble(e);
     rv_[b] += r.rv(6), rv_[b + 1] += r.rv(7);
   }
 }
-
-namespace {
-// Local velocity unknowns of a triangle: corner dofs (-1 where fixed), then the bubble's.
-std::array<int, 8> local_dofs(const std::array<std::int32_t, 3>& tri, const std::vector<int>& vx_dof,
-                              const std::vector<int>& vy_dof, int bubble) {
-  std::array<int, 8> dof;
-  for (int a = 0; a < 3; ++a) dof[2 * a] = vx_dof[tri[a]], dof[2 * a + 1] = vy_dof[tri[a]];
-  dof[6] = bubble, dof[7] = bubble + 1;
-  return dof;
-}
-}  // namespace
 
 void UnifiedStep::factorize_global_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze) {
   element_matrices(s);
@@ -179,19 +127,19 @@ void UnifiedStep::factorize_global_bubble(const mesh::FluidMesh& mesh, const Ste
   for (int e = 0; e < ne; ++e) {
     const auto& m = mats_[e];
     const auto& tri = mesh.triangles[e];
-    const auto dof = local_dofs(tri, vx_dof_, vy_dof_, n_node_v_ + 2 * e);
+    const auto dof = num_.element_velocities(tri, e);
     for (int r = 0; r < 8; ++r) {
       if (dof[r] < 0) continue;
       for (int c = 0; c < 8; ++c)
         if (dof[c] >= 0) kt.emplace_back(dof[r], dof[c], m.M(r, c) * inv_dt + m.K(r, c));
       for (int a = 0; a < 3; ++a)
-        if (const int q = pdof_[tri[a]]; q >= 0) gt.emplace_back(dof[r], q, m.G(r, a));
+        if (const int q = num_.p[tri[a]]; q >= 0) gt.emplace_back(dof[r], q, m.G(r, a));
     }
   }
   add_structure_tangent(s, [&kt](int row, int col, double value) { kt.emplace_back(row, col, value); });
-  SparseMatrix kvv(n_v_, n_v_);
+  SparseMatrix kvv(num_.velocities, num_.velocities);
   kvv.setFromTriplets(kt.begin(), kt.end());
-  g_.resize(n_v_, n_p_);
+  g_.resize(num_.velocities, num_.pressures);
   g_.setFromTriplets(gt.begin(), gt.end());
   factor_mp_ = mp_;
   const Eigen::VectorXd d = s.dt * mp_.cwiseInverse();
@@ -246,31 +194,25 @@ void UnifiedStep::condense_element(int e, const StepSettings& s, const fluid::Ge
   k.bottomRightCorner<3, 3>() = -(gcb_inv * b.g_b);
 }
 
-std::array<int, 9> UnifiedStep::element_unknowns(const std::array<std::int32_t, 3>& tri) const {
-  std::array<int, 9> u;
-  for (int c = 0; c < 3; ++c) {
-    u[2 * c] = vx_dof_[tri[c]], u[2 * c + 1] = vy_dof_[tri[c]];
-    u[6 + c] = pdof_[tri[c]] >= 0 ? n_node_v_ + pdof_[tri[c]] : -1;
-  }
-  return u;
-}
-
 void UnifiedStep::condensed_triplets(const mesh::FluidMesh& mesh, const StepSettings& s,
                                      const std::vector<fluid::GeometricDerivatives>& geometric,
                                      std::vector<BubbleCondensation>& bubbles,
                                      std::vector<Eigen::Triplet<double>>& t) const {
   const int ne = static_cast<int>(mesh.triangles.size());
   bubbles.resize(ne);
-  t.reserve(t.size() + 81 * ne + n_p_);
+  t.reserve(t.size() + 81 * ne + num_.pressures);
   CondensedElement k;
   for (int e = 0; e < ne; ++e) {
     condense_element(e, s, &geometric[e], bubbles[e], k);
-    const std::array<int, 9> u = element_unknowns(mesh.triangles[e]);
+    const std::array<int, 9> u = num_.condensed_unknowns(mesh.triangles[e]);
     for (int r = 0; r < 9; ++r)
       for (int c = 0; c < 9; ++c)
         if (u[r] >= 0 && u[c] >= 0) t.emplace_back(u[r], u[c], k(r, c));
   }
-  for (int q = 0; q < n_p_; ++q) t.emplace_back(n_node_v_ + q, n_node_v_ + q, -mp_[q] / s.dt);
+  for (int q = 0; q < num_.pressures; ++q) {
+    const int u = num_.node_velocities + q;
+    t.emplace_back(u, u, -mp_[q] / s.dt);
+  }
   add_structure_tangent(s, [&t](int row, int col, double value) { t.emplace_back(row, col, value); });
 }
 
@@ -283,15 +225,15 @@ constexpr std::array<std::array<int, 2>, 6> kCornerPairs{{{0, 0}, {1, 1}, {2, 2}
 void UnifiedStep::analyze_condensed(const mesh::FluidMesh& mesh, const StepSettings& s) {
   // The unknowns of a node (velocities, pressure, a structure node's rotation) as one group,
   // coupled to the nodes it shares a triangle or a beam element with.
-  const int n = n_node_v_ + n_p_;
+  const int n = num_.node_velocities + num_.pressures;
   std::vector<int> node_of(n, -1), structure_unknowns;
-  for (std::size_t i = 0; i < vx_dof_.size(); ++i) {
-    if (vx_dof_[i] >= 0) node_of[vx_dof_[i]] = static_cast<int>(i);
-    if (vy_dof_[i] >= 0) node_of[vy_dof_[i]] = static_cast<int>(i);
-    if (pdof_[i] >= 0) node_of[n_node_v_ + pdof_[i]] = static_cast<int>(i);
+  for (std::size_t i = 0; i < num_.vx.size(); ++i) {
+    if (num_.vx[i] >= 0) node_of[num_.vx[i]] = static_cast<int>(i);
+    if (num_.vy[i] >= 0) node_of[num_.vy[i]] = static_cast<int>(i);
+    if (num_.p[i] >= 0) node_of[num_.node_velocities + num_.p[i]] = static_cast<int>(i);
   }
-  for (std::size_t j = 0; j < s_dof_.size(); ++j)
-    if (const int d = s_dof_[j]; d >= 0) node_of[d] = s.structure.node[j / 3], structure_unknowns.push_back(d);
+  for (std::size_t j = 0; j < num_.structure.size(); ++j)
+    if (const int d = num_.structure[j]; d >= 0) node_of[d] = s.structure.node[j / 3], structure_unknowns.push_back(d);
   std::vector<std::array<int, 2>> couplings;
   couplings.reserve(3 * mesh.triangles.size());
   for (const auto& tri : mesh.triangles) couplings.push_back({tri[0], tri[1]}), couplings.push_back({tri[1], tri[2]}),
@@ -306,7 +248,7 @@ void UnifiedStep::analyze_condensed(const mesh::FluidMesh& mesh, const StepSetti
   // Each unknown's rank among its node's unknowns, the first unknown of each node, and where
   // each triangle's blocks and each pressure's diagonal go in the factor.
   slot_.resize(n);
-  std::vector<int> first(vx_dof_.size(), -1), count(vx_dof_.size(), 0);
+  std::vector<int> first(num_.vx.size(), -1), count(num_.vx.size(), 0);
   for (int u = 0; u < n; ++u) {
     const int i = node_of[u];
     if (first[i] < 0) first[i] = u;
@@ -321,8 +263,11 @@ void UnifiedStep::analyze_condensed(const mesh::FluidMesh& mesh, const StepSetti
       element_blocks_[e][p] = row0 >= 0 && col0 >= 0 ? condensed_solver_.block(row0, col0) : SupernodalLdlt::Block{-1, 0, 0};
     }
   }
-  pressure_diagonal_.resize(n_p_);
-  for (int q = 0; q < n_p_; ++q) pressure_diagonal_[q] = condensed_solver_.block(n_node_v_ + q, n_node_v_ + q).base;
+  pressure_diagonal_.resize(num_.pressures);
+  for (int q = 0; q < num_.pressures; ++q) {
+    const int u = num_.node_velocities + q;
+    pressure_diagonal_[q] = condensed_solver_.block(u, u).base;
+  }
 }
 
 void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze) {
@@ -337,7 +282,7 @@ void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const 
   CondensedElement k;
   for (int e = 0; e < ne; ++e) {
     condense_element(e, s, nullptr, bubbles_[e], k);
-    const std::array<int, 9> u = element_unknowns(mesh.triangles[e]);
+    const std::array<int, 9> u = num_.condensed_unknowns(mesh.triangles[e]);
     for (std::size_t p = 0; p < kCornerPairs.size(); ++p) {
       const SupernodalLdlt::Block& b = element_blocks_[e][p];
       if (b.base < 0) continue;
@@ -350,7 +295,7 @@ void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const 
       }
     }
   }
-  for (int q = 0; q < n_p_; ++q) lx[pressure_diagonal_[q]] -= mp_[q] / s.dt;
+  for (int q = 0; q < num_.pressures; ++q) lx[pressure_diagonal_[q]] -= mp_[q] / s.dt;
   factor_structure_ = structure_tangent_lower(s);
   structure_in_factor_ = factor_structure_;
   for (const auto& t : factor_structure_) lx[condensed_solver_.block(t.row(), t.col()).base] += t.value();
@@ -374,7 +319,7 @@ bool UnifiedStep::update_structure_tangent(const StepSettings& s) {
   // the trailing block's refactorisation costs more than it saves; a yielding fiber changes it
   // by 1e-2 to 0.2 (the yielding obstacle: the same iterations at 1e-3 as at 0, more at 1e-2).
   int first = std::numeric_limits<int>::max(), last = -1;
-  for (const int d : s_dof_)
+  for (const int d : num_.structure)
     if (d >= 0) first = std::min(first, d), last = std::max(last, d);
   if (last < 0) return true;  // every structure dof supported
   const int m = last - first + 1;
@@ -396,27 +341,27 @@ void UnifiedStep::solve_condensed(const mesh::FluidMesh& mesh, const std::vector
   // their arithmetic). Right-hand side with the bubble rows condensed in; pressure rows negated.
   const long cols = rv.cols();
   const int ne = static_cast<int>(mesh.triangles.size());
-  Eigen::MatrixXd rhs(n_node_v_ + n_p_, cols);
-  rhs.topRows(n_node_v_) = rv.topRows(n_node_v_);
-  rhs.bottomRows(n_p_) = -rp;
+  Eigen::MatrixXd rhs(num_.node_velocities + num_.pressures, cols);
+  rhs.topRows(num_.node_velocities) = rv.topRows(num_.node_velocities);
+  rhs.bottomRows(num_.pressures) = -rp;
   Eigen::MatrixXd z(2 * ne, cols);  // Abb^-1 r_b, two rows per element
   for (long c = 0; c < cols; ++c) {
     for (int e = 0; e < ne; ++e) {
       const auto& b = bubbles[e];
-      const Eigen::Vector2d ze = b.inv_bb * rv.col(c).segment<2>(n_node_v_ + 2 * e);
+      const Eigen::Vector2d ze = b.inv_bb * rv.col(c).segment<2>(num_.bubble(e));
       z.col(c).segment<2>(2 * e) = ze;
       const auto& tri = mesh.triangles[e];
       for (int k = 0; k < 3; ++k) {
-        if (const int dx = vx_dof_[tri[k]]; dx >= 0) rhs(dx, c) -= b.a_cb.row(2 * k).dot(ze);
-        if (const int dy = vy_dof_[tri[k]]; dy >= 0) rhs(dy, c) -= b.a_cb.row(2 * k + 1).dot(ze);
-        if (const int q = pdof_[tri[k]]; q >= 0) rhs(n_node_v_ + q, c) += b.gc_b.col(k).dot(ze);
+        if (const int dx = num_.vx[tri[k]]; dx >= 0) rhs(dx, c) -= b.a_cb.row(2 * k).dot(ze);
+        if (const int dy = num_.vy[tri[k]]; dy >= 0) rhs(dy, c) -= b.a_cb.row(2 * k + 1).dot(ze);
+        if (const int q = num_.p[tri[k]]; q >= 0) rhs(num_.node_velocities + q, c) += b.gc_b.col(k).dot(ze);
       }
     }
   }
   const Eigen::MatrixXd x = solve(rhs);
-  dv.resize(n_v_, cols);
-  dv.topRows(n_node_v_) = x.topRows(n_node_v_);
-  dp = x.bottomRows(n_p_);
+  dv.resize(num_.velocities, cols);
+  dv.topRows(num_.node_velocities) = x.topRows(num_.node_velocities);
+  dp = x.bottomRows(num_.pressures);
   // Recover each bubble: dvb = Abb^-1 (r_b - A_bc dvc + G_b dp).
   for (long c = 0; c < cols; ++c) {
     for (int e = 0; e < ne; ++e) {
@@ -425,12 +370,12 @@ void UnifiedStep::solve_condensed(const mesh::FluidMesh& mesh, const std::vector
       Eigen::Matrix<double, 6, 1> dvc;
       Eigen::Vector3d dpe;
       for (int k = 0; k < 3; ++k) {
-        const int dx = vx_dof_[tri[k]], dy = vy_dof_[tri[k]], q = pdof_[tri[k]];
+        const int dx = num_.vx[tri[k]], dy = num_.vy[tri[k]], q = num_.p[tri[k]];
         dvc(2 * k) = dx >= 0 ? x(dx, c) : 0.0;
         dvc(2 * k + 1) = dy >= 0 ? x(dy, c) : 0.0;
-        dpe(k) = q >= 0 ? x(n_node_v_ + q, c) : 0.0;
+        dpe(k) = q >= 0 ? x(num_.node_velocities + q, c) : 0.0;
       }
-      dv.col(c).segment<2>(n_node_v_ + 2 * e) = z.col(c).segment<2>(2 * e) + b.inv_bb * (b.g_b * dpe - b.a_bc * dvc);
+      dv.col(c).segment<2>(num_.bubble(e)) = z.col(c).segment<2>(2 * e) + b.inv_bb * (b.g_b * dpe - b.a_bc * dvc);
     }
   }
 }
@@ -451,16 +396,16 @@ void UnifiedStep::structure_residual(const StepSettings& s) {
   auto* model = s.structure.model;
   s_force_scale_ = 0.0;
   if (!model) return;
-  Eigen::VectorXd v = Eigen::VectorXd::Zero(s_dof_.size());
-  for (std::size_t j = 0; j < s_dof_.size(); ++j)
-    if (s_dof_[j] >= 0) v[j] = v_[s_dof_[j]];
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(num_.structure.size());
+  for (std::size_t j = 0; j < num_.structure.size(); ++j)
+    if (num_.structure[j] >= 0) v[j] = v_[num_.structure[j]];
   model->set_trial_displacement(s_un_ + s.dt * v);
   const Eigen::VectorXd load = model->external_load(), inertia = model->mass_times(structure_acceleration(s, v));
   const Eigen::VectorXd fs = model->resisting_force();
   const Eigen::VectorXd r = load - inertia - model->damping_times(v) - fs;
   s_force_scale_ = std::sqrt(load.squaredNorm() + inertia.squaredNorm() + fs.squaredNorm());
-  for (std::size_t j = 0; j < s_dof_.size(); ++j)
-    if (s_dof_[j] >= 0) rv_[s_dof_[j]] += r[j];
+  for (std::size_t j = 0; j < num_.structure.size(); ++j)
+    if (num_.structure[j] >= 0) rv_[num_.structure[j]] += r[j];
 }
 
 Eigen::VectorXd UnifiedStep::structure_acceleration(const StepSettings& s, const Eigen::VectorXd& v) const {
@@ -474,7 +419,7 @@ void UnifiedStep::add_structure_tangent(const StepSettings& s, const structure::
   const auto* model = s.structure.model;
   if (!model) return;
   const structure::AddEntry add = [&](int row, int col, double value) {
-    if (s_dof_[row] >= 0 && s_dof_[col] >= 0) put(s_dof_[row], s_dof_[col], value);
+    if (num_.structure[row] >= 0 && num_.structure[col] >= 0) put(num_.structure[row], num_.structure[col], value);
   };
   model->add_mass(add, 1.0 / s.dt);
   model->add_damping(add, 1.0);
@@ -503,36 +448,16 @@ void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettin
   }
 }
 
-StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes,
-                                const std::atomic<bool>* cancel) {
-  report_ = StepReport{};
-  StepReport& report = report_;
-  xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy, pn_ = nodes.p;
-  wall_velocity_ = s.wall_velocity;
-  if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
-  number_unknowns(mesh, nodes, s);
-  volume_correction(mesh, s, nodes);
-  report.velocity_unknowns = n_v_;
-  report.pressure_unknowns = n_p_;
-
-  // Initial iterate: the velocities, pressures and bubbles of t_n.
-  v_.setZero(n_v_);
-  const int ne = static_cast<int>(mesh.triangles.size());
-  const int num_params = static_cast<int>(s.sensitivity.size());
-  vbn_.assign(ne, Eigen::Vector2d::Zero());
-  dvbn_.assign(num_params > 0 ? ne : 0, BubbleSensitivity::Zero(2, num_params));
-  for (int e = 0; e < ne; ++e) {
-    const std::uint64_t key = triangle_key(mesh.triangles[e]);
-    if (auto it = bubbles_by_triangle_.find(key); it != bubbles_by_triangle_.end()) vbn_[e] = it->second;
-    if (auto it = bubble_sensitivity_by_triangle_.find(key); num_params > 0 && it != bubble_sensitivity_by_triangle_.end())
-      dvbn_[e] = it->second;
-    v_[n_node_v_ + 2 * e] = vbn_[e](0), v_[n_node_v_ + 2 * e + 1] = vbn_[e](1);
-  }
-  p_.setZero(n_p_);
+void UnifiedStep::initial_iterate(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
+  // The velocities, pressures and bubbles of t_n.
+  v_.setZero(num_.velocities);
+  bubble_history_.restore(mesh.triangles, static_cast<int>(s.sensitivity.size()), vbn_, dvbn_);
+  for (std::size_t e = 0; e < mesh.triangles.size(); ++e) v_.segment<2>(num_.bubble(e)) = vbn_[e];
+  p_.setZero(num_.pressures);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (vx_dof_[i] >= 0) v_[vx_dof_[i]] = vxn_[i];
-    if (vy_dof_[i] >= 0) v_[vy_dof_[i]] = vyn_[i];
-    if (pdof_[i] >= 0) p_[pdof_[i]] = pn_[i];
+    if (num_.vx[i] >= 0) v_[num_.vx[i]] = vxn_[i];
+    if (num_.vy[i] >= 0) v_[num_.vy[i]] = vyn_[i];
+    if (num_.p[i] >= 0) p_[num_.p[i]] = pn_[i];
   }
 
   // The structure's state at t_n, from its nodes (rotations included).
@@ -543,117 +468,128 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     const int i = sn[k];
     s_un_.segment<3>(3 * k) << nodes.x[i] - nodes.x0[i], nodes.y[i] - nodes.y0[i], nodes.rz[i];
     s_vn_.segment<3>(3 * k) << nodes.vx[i], nodes.vy[i], nodes.wz[i];
-    if (const int d = s_dof_[3 * k + 2]; d >= 0) v_[d] = nodes.wz[i];
+    if (const int d = num_.structure[3 * k + 2]; d >= 0) v_[d] = nodes.wz[i];
   }
+}
 
-  double previous_residual = 0.0;
-  std::vector<double> best;  // the smallest residual up to each iteration
+double UnifiedStep::relative_residual(const StepSettings& s) const {
+  // The velocity residual against the step's force scale; the pressure residual of each node
+  // against the pressure change it would cause (dt rp / Mp) relative to the pressure scale, or
+  // against the round-off of its own terms, whichever is larger (in a sliver dt/Mp is large and
+  // amplifies the round-off of G^T v).
+  double f_scale = s_force_scale_ * s_force_scale_;  // the structure's, 0 without one
+  for (const auto& r : element_residuals_) f_scale += r.f_squared;
+  f_scale = std::sqrt(f_scale) + 1e-300;
   const double p_floor = s.fluid.rho * std::hypot(s.gx, s.gy) * 1e-3 + 1e-12;
-  for (int it = 0;; ++it) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) throw StepCancelled();
-    auto t0 = Clock::now();
-    element_terms(mesh, s);
-    residuals(mesh);
-    structure_residual(s);
-    report.assemble_seconds += seconds_since(t0);
-
-    // Convergence: the velocity residual against the step's force scale; the pressure residual
-    // of each node against the pressure change it would cause (dt rp / Mp) relative to the
-    // pressure scale, or against the round-off of its own terms, whichever is larger (in a
-    // sliver dt/Mp is large and amplifies the round-off of G^T v).
-    double f_scale = s_force_scale_ * s_force_scale_;  // the structure's, 0 without one
-    for (const auto& r : element_residuals_) f_scale += r.f_squared;
-    f_scale = std::sqrt(f_scale) + 1e-300;
-    const double p_scale = std::max(p_.lpNorm<Eigen::Infinity>(), p_floor);
-    const double r_v = rv_.norm() / f_scale;
-    double r_p = 0.0;
-    for (int q = 0; q < n_p_; ++q) {
-      const double allowed = mp_[q] / s.dt * p_scale + kRoundoff * rp_abs_[q] / s.tolerance;
-      r_p = std::max(r_p, std::abs(rp_[q]) / allowed);
-    }
-    report.residual = std::max(r_v, r_p);
-    if (!std::isfinite(report.residual))
-      throw StepFailure("Newton produced a non-finite residual at iteration " + std::to_string(it));
-    if (report.residual <= s.tolerance) {
-      check_admissible(mesh, s, nodes);
-      if (num_params > 0) {
-        t0 = Clock::now();
-        solve_sensitivities(mesh, s, nodes);
-        report.sensitivity_seconds = seconds_since(t0);
-      }
-      break;
-    }
-    best.push_back(it == 0 ? report.residual : std::min(best.back(), report.residual));
-    // Give up when the residual has not even halved in kStallWindow iterations (diverging or
-    // cycling: a splash the step is too long for): a halved step is cheaper than the rest of
-    // max_iterations, each with a factorisation.
-    const bool hopeless = it >= 2 * kStallWindow && best[it] > 0.5 * best[it - kStallWindow];
-    if (it == s.max_iterations || hopeless) {
-      char msg[128];
-      std::snprintf(msg, sizeof msg, "Newton did not converge in %d iterations (relative residual %.3e%s)", it,
-                    report.residual, hopeless ? ", not halved in the last iterations" : "");
-      throw StepFailure(msg);
-    }
-
-    // One factorisation per step serves every iteration (the fluid's tangent changes only
-    // through the small geometry update); refactorise at the current iterate if convergence
-    // stalls. The structure's block follows every iterate: a fiber that yields or unloads
-    // changes its tangent fifty-fold, and a stale one held the yielding obstacle's steps at a
-    // contraction of 0.4 per iteration (20 iterations instead of 8).
-    const bool stalled = it > 0 && report.residual > 0.5 * previous_residual;
-    previous_residual = report.residual;
-    const bool global = s.formulation == StepSettings::Formulation::kGlobalBubble;
-    t0 = Clock::now();
-    const bool update = it > 0 && !stalled && !global && s.structure.model;
-    if (it == 0 || stalled || (update && !update_structure_tangent(s))) {
-      try {
-        if (global) factorize_global_bubble(mesh, s, it == 0);
-        else factorize_condensed_bubble(mesh, s, it == 0);
-      } catch (const std::runtime_error& e) {
-        throw StepFailure(e.what());
-      }
-      ++report.factorizations;
-    }
-    report.factorize_seconds += seconds_since(t0);
-    t0 = Clock::now();
-    if (global) correct_global_bubble(s);
-    else correct_condensed_bubble(mesh);
-    report.solve_seconds += seconds_since(t0);
-    report.iterations = it + 1;
+  const double p_scale = std::max(p_.lpNorm<Eigen::Infinity>(), p_floor);
+  const double r_v = rv_.norm() / f_scale;
+  double r_p = 0.0;
+  for (int q = 0; q < num_.pressures; ++q) {
+    const double allowed = mp_[q] / s.dt * p_scale + kRoundoff * rp_abs_[q] / s.tolerance;
+    r_p = std::max(r_p, std::abs(rp_[q]) / allowed);
   }
+  return std::max(r_v, r_p);
+}
 
-  // Commit the converged state to the nodes; particles outside the mesh fall freely.
+void UnifiedStep::newton_correction(const mesh::FluidMesh& mesh, const StepSettings& s, bool first, bool stalled) {
+  // One factorisation per step serves every iteration (the fluid's tangent changes only
+  // through the small geometry update); refactorise at the current iterate if convergence
+  // stalls. The structure's block follows every iterate: a fiber that yields or unloads
+  // changes its tangent fifty-fold, and a stale one held the yielding obstacle's steps at a
+  // contraction of 0.4 per iteration (20 iterations instead of 8).
+  const bool global = s.formulation == StepSettings::Formulation::kGlobalBubble;
+  auto t0 = Clock::now();
+  const bool update = !first && !stalled && !global && s.structure.model;
+  if (first || stalled || (update && !update_structure_tangent(s))) {
+    try {
+      if (global) factorize_global_bubble(mesh, s, first);
+      else factorize_condensed_bubble(mesh, s, first);
+    } catch (const std::runtime_error& e) {
+      throw StepFailure(e.what());
+    }
+    ++report_.factorizations;
+  }
+  report_.factorize_seconds += seconds_since(t0);
+  t0 = Clock::now();
+  if (global) correct_global_bubble(s);
+  else correct_condensed_bubble(mesh);
+  report_.solve_seconds += seconds_since(t0);
+}
+
+void UnifiedStep::commit(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) {
+  // The converged state to the nodes; particles outside the mesh fall freely.
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const int dx = vx_dof_[i], dy = vy_dof_[i];
+    const int dx = num_.vx[i], dy = num_.vy[i];
     if (dx < 0 && dy < 0) continue;
     // A particle that hits a wall is taken out where it was, as one closer to a wall than the
     // removal distance is between steps (stopped there instead, the jet behind it collides with it).
     if (hits_wall_[i]) {
       nodes.kind[i] = mesh::NodeKind::Removed;
-      ++report.removed_particles;
+      ++report_.removed_particles;
       continue;
     }
     nodes.vx[i] = velocity_x(static_cast<int>(i)), nodes.vy[i] = velocity_y(static_cast<int>(i));
     nodes.x[i] = xn_[i] + s.dt * nodes.vx[i];
     nodes.y[i] = yn_[i] + s.dt * nodes.vy[i];
   }
+  const auto& sn = s.structure.node;
   for (std::size_t k = 0; k < sn.size(); ++k) {
-    const int d = s_dof_[3 * k + 2];
+    const int d = num_.structure[3 * k + 2];
     nodes.wz[sn[k]] = d >= 0 ? v_[d] : 0.0;
     nodes.rz[sn[k]] += s.dt * nodes.wz[sn[k]];
   }
-  for (std::size_t i = 0; i < nodes.size(); ++i) nodes.p[i] = pdof_[i] >= 0 ? p_[pdof_[i]] : 0.0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) nodes.p[i] = num_.p[i] >= 0 ? p_[num_.p[i]] : 0.0;
+  const int num_params = static_cast<int>(s.sensitivity.size());
   if (num_params > 0) commit_sensitivities(s, nodes);
   if (s.structure.model) s.structure.model->commit();
   move_free_particles(mesh.in_mesh, walls_, {s.gx, s.gy}, s.dt, nodes);
-  bubbles_by_triangle_.clear();
-  bubble_sensitivity_by_triangle_.clear();
-  for (int e = 0; e < ne; ++e) {
-    const std::uint64_t key = triangle_key(mesh.triangles[e]);
-    bubbles_by_triangle_[key] = v_.segment<2>(n_node_v_ + 2 * e);
-    if (num_params > 0) bubble_sensitivity_by_triangle_[key] = dv_.middleRows<2>(n_node_v_ + 2 * e);
+  const int bubbles = num_.velocities - num_.node_velocities;
+  bubble_history_.store(mesh.triangles, v_.tail(bubbles),
+                        num_params > 0 ? Eigen::MatrixXd(dv_.bottomRows(bubbles)) : Eigen::MatrixXd());
+}
+
+StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes,
+                                const std::atomic<bool>* cancel) {
+  report_ = StepReport{};
+  xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy, pn_ = nodes.p;
+  wall_velocity_ = s.wall_velocity;
+  if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
+  num_ = number_unknowns(mesh, nodes, s.slip, s.structure.model, s.structure.node);
+  volume_correction(mesh, s, nodes);
+  report_.velocity_unknowns = num_.velocities;
+  report_.pressure_unknowns = num_.pressures;
+  initial_iterate(mesh, s, nodes);
+
+  NewtonMonitor newton(s.tolerance, s.max_iterations);
+  for (;;) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) throw StepCancelled();
+    auto t0 = Clock::now();
+    element_terms(mesh, s);
+    residuals(mesh);
+    structure_residual(s);
+    report_.assemble_seconds += seconds_since(t0);
+    newton.record(report_.residual = relative_residual(s));
+    const int it = newton.iteration();
+    if (!std::isfinite(report_.residual))
+      throw StepFailure("Newton produced a non-finite residual at iteration " + std::to_string(it));
+    if (newton.converged()) break;
+    if (newton.out_of_iterations() || newton.hopeless()) {
+      char msg[128];
+      std::snprintf(msg, sizeof msg, "Newton did not converge in %d iterations (relative residual %.3e%s)", it,
+                    report_.residual, newton.hopeless() ? ", not halved in the last iterations" : "");
+      throw StepFailure(msg);
+    }
+    newton_correction(mesh, s, it == 0, newton.stalled());
+    report_.iterations = it + 1;
   }
-  return report;
+  check_admissible(mesh, s, nodes);
+  if (!s.sensitivity.empty()) {
+    const auto t0 = Clock::now();
+    solve_sensitivities(mesh, s, nodes);
+    report_.sensitivity_seconds = seconds_since(t0);
+  }
+  commit(mesh, s, nodes);
+  return report_;
 }
 
 }  // namespace pfem

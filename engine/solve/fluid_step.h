@@ -1,5 +1,7 @@
 #pragma once
-// One PFEM time step on a fixed mesh: the Newton solve of theory §4.
+// One PFEM time step on a fixed mesh: the Newton solve of theory §4. Its parts: the numbering
+// of the unknowns (step_numbering.h), the loop's tests (newton_monitor.h), the bubble history
+// (bubble_history.h), the wall guard (wall_guard.h) and the DDM (step_sensitivity.cpp).
 //
 // Unknowns: a velocity at every free node in the mesh (wall nodes are fixed at v = 0), a
 // bubble velocity per triangle, and a pressure at every mesh node, free-surface nodes
@@ -37,15 +39,17 @@
 #include <cstdint>
 #include <functional>
 #include <span>
-#include <unordered_map>
 #include <stdexcept>
 #include <vector>
 
 #include "engine/fluid/mini_element.h"
 #include "engine/fluid/mini_sensitivity.h"
 #include "engine/mesh/remesher.h"
+#include "engine/solve/bubble_history.h"
 #include "engine/solve/linear_solvers.h"
+#include "engine/solve/newton_monitor.h"
 #include "engine/solve/node_state.h"
+#include "engine/solve/step_numbering.h"
 #include "engine/solve/supernodal_ldlt.h"
 #include "engine/solve/wall_guard.h"
 #include "engine/structure/structure_model.h"
@@ -149,7 +153,15 @@ class UnifiedStep {
     Eigen::Matrix<double, 2, 3> gc_b;  // ... of the mass balance's Gc (G in the Newton matrix)
   };
 
-  void number_unknowns(const mesh::FluidMesh& mesh, const NodeState& nodes, const StepSettings& s);
+  // The first iterate: the unknowns at t_n (bubbles by triangle), and the structure's state there.
+  void initial_iterate(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
+  // The residual's size at the iterate, relative to what the tolerance compares it with.
+  double relative_residual(const StepSettings& s) const;
+  // A Newton correction of the iterate, with the matrix refactorised at the first iterate and
+  // where convergence stalled (else the last factorisation, its structure block updated).
+  void newton_correction(const mesh::FluidMesh& mesh, const StepSettings& s, bool first, bool stalled);
+  // The converged step to the nodes, the structure and the bubble history.
+  void commit(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes);
   // The structure's velocities, displacements at the iterate, and its residual rows added to rv_.
   void structure_residual(const StepSettings& s);
   // (v - v_n)/dt - g at every structure dof (g at the translations; 0 without self-weight): M
@@ -181,8 +193,6 @@ class UnifiedStep {
   using CondensedElement = Eigen::Matrix<double, 9, 9>;
   void condense_element(int e, const StepSettings& s, const fluid::GeometricDerivatives* geometric,
                         BubbleCondensation& b, CondensedElement& k) const;
-  // The unknowns of a triangle's corners in that order (-1 where there is none).
-  std::array<int, 9> element_unknowns(const std::array<std::int32_t, 3>& tri) const;
   // An element's Jacobian -d(rv, rp)/d(v, p) in its velocity columns: the velocity rows a
   // (corners, then bubble) and the pressure rows q of the corner columns (see condense_element).
   void element_jacobian(int e, const StepSettings& s, const fluid::GeometricDerivatives* geometric, fluid::Mat8& a,
@@ -230,12 +240,9 @@ class UnifiedStep {
 
   // Per step.
   StepReport report_;
-  std::vector<int> vx_dof_, vy_dof_;  // per node: velocity unknowns or -1 (fixed, not active)
-  std::vector<int> s_dof_;            // per structure dof (3 per structure node): unknown or -1
-  Eigen::VectorXd s_un_, s_vn_;       // structure displacements and velocities at t_n
-  double s_force_scale_ = 0.0;        // magnitude of the structure's forces at the iterate
-  std::vector<int> pdof_;           // per node: pressure unknown or -1
-  int n_node_v_ = 0, n_v_ = 0, n_p_ = 0;
+  StepNumbering num_;
+  Eigen::VectorXd s_un_, s_vn_;                   // structure displacements and velocities at t_n
+  double s_force_scale_ = 0.0;                    // magnitude of the structure's forces at the iterate
   std::vector<double> xn_, yn_, vxn_, vyn_, pn_;  // state at t_n (per node)
   std::vector<std::uint8_t> hits_wall_;           // per node: hits a wall (check_admissible)
   std::vector<WallPiece> walls_;                  // the walls and beams at t_n and t_{n+1} (ditto)
@@ -244,8 +251,7 @@ class UnifiedStep {
   double dilatation_ = 0.0, area_n_ = 0.0, source_scale_ = 0.0;
   std::vector<double> element_area_n_;
   std::vector<Eigen::Vector2d> vbn_;                // bubble velocities at t_n (per element)
-  // Bubble velocities of the last converged step, by the triangle's sorted node triple.
-  std::unordered_map<std::uint64_t, Eigen::Vector2d> bubbles_by_triangle_;
+  BubbleHistory bubble_history_;  // of the last converged step
   // Per iteration.
   Eigen::VectorXd v_, p_;           // current iterate of the unknowns
   Eigen::VectorXd rv_, rp_, mp_;    // residuals and assembled lumped pressure mass
@@ -264,11 +270,9 @@ class UnifiedStep {
   std::vector<long> pressure_diagonal_;  // per pressure unknown: its diagonal in the factor
   std::vector<Eigen::Triplet<double>> factor_structure_;  // the structure's entries last factorised
   std::vector<Eigen::Triplet<double>> structure_in_factor_;  // ... and those the factor holds now
-  // DDM: bubble sensitivities (2 x P) at t_n per element and of the last step by triangle; the
-  // solved sensitivities of the unknowns (one column per parameter).
-  using BubbleSensitivity = Eigen::Matrix<double, 2, Eigen::Dynamic>;
-  std::vector<BubbleSensitivity> dvbn_;
-  std::unordered_map<std::uint64_t, BubbleSensitivity> bubble_sensitivity_by_triangle_;
+  // DDM: bubble sensitivities (2 x P) at t_n per element; the solved sensitivities of the
+  // unknowns (one column per parameter).
+  std::vector<BubbleHistory::Sensitivity> dvbn_;
   Eigen::MatrixXd dv_, dp_;
   // The exact Jacobian's pieces.
   std::vector<fluid::GeometricDerivatives> geometric_;

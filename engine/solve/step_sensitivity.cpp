@@ -42,7 +42,7 @@ void UnifiedStep::assemble_jacobian(const mesh::FluidMesh& mesh, const StepSetti
   }
   std::vector<Eigen::Triplet<double>> t;
   condensed_triplets(mesh, s, geometric_, jacobian_bubbles_, t);
-  jacobian_.resize(n_node_v_ + n_p_, n_node_v_ + n_p_);
+  jacobian_.resize(num_.node_velocities + num_.pressures, num_.node_velocities + num_.pressures);
   jacobian_.setFromTriplets(t.begin(), t.end());
 }
 
@@ -65,7 +65,8 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
   const int num_params = static_cast<int>(s.sensitivity.size());
   const int ne = static_cast<int>(mesh.triangles.size());
   const double inv_dt = 1.0 / s.dt;
-  Eigen::MatrixXd rv = Eigen::MatrixXd::Zero(n_v_, num_params), rp = Eigen::MatrixXd::Zero(n_p_, num_params);
+  Eigen::MatrixXd rv = Eigen::MatrixXd::Zero(num_.velocities, num_params);
+  Eigen::MatrixXd rp = Eigen::MatrixXd::Zero(num_.pressures, num_params);
   Eigen::Matrix<double, 6, 1> dxn;
   fluid::Vec8 dvn;
   fluid::Vec3 dpn;
@@ -92,7 +93,7 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
     const auto& tri = mesh.triangles[e];
     const fluid::ElementState st = element_state(mesh, e);
     const auto& gd = geometric_[e];
-    const int bubble = n_node_v_ + 2 * e;
+    const int bubble = num_.bubble(e);
     fluid::Mat8 a_e;
     Eigen::Matrix<double, 3, 6> q_e;
     bool have_jacobian = false;
@@ -115,7 +116,7 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
       // A moving wall's corner: its prescribed velocity sensitivity w enters as -J(:, corner) w.
       for (int c = 0; !s.wall_velocity_sensitivity.empty() && c < 6; ++c) {
         const int i = tri[c / 2];
-        if ((c % 2 == 0 ? vx_dof_[i] : vy_dof_[i]) >= 0) continue;
+        if ((c % 2 == 0 ? num_.vx[i] : num_.vy[i]) >= 0) continue;
         const double w = s.wall_velocity_sensitivity[(static_cast<std::size_t>(i) * num_params + k) * 2 + c % 2];
         if (w == 0.0) continue;
         if (!have_jacobian) element_jacobian(e, s, &gd, a_e, q_e), have_jacobian = true;
@@ -128,7 +129,7 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
                       s.thickness / 3.0 * (ddilatation(k) * element_area_n_[e] + dilatation_ * da);
       }
       for (int a = 0; a < 3; ++a) {
-        const int i = tri[a], dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];
+        const int i = tri[a], dx = num_.vx[i], dy = num_.vy[i], q = num_.p[i];
         if (dx >= 0) rv(dx, k) += sv(2 * a);
         if (dy >= 0) rv(dy, k) += sv(2 * a + 1);
         if (q >= 0) rp(q, k) += sp(a);
@@ -138,8 +139,8 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
   }
   for (int k = 0; s.structure.model && k < num_params; ++k) {
     const Eigen::VectorXd r = structure_sensitivity_rhs(s, nodes, k);
-    for (std::size_t j = 0; j < s_dof_.size(); ++j)
-      if (s_dof_[j] >= 0) rv(s_dof_[j], k) += r[j];
+    for (std::size_t j = 0; j < num_.structure.size(); ++j)
+      if (num_.structure[j] >= 0) rv(num_.structure[j], k) += r[j];
   }
   // Up to kIterativeParameters parameters: GMRES preconditioned by the step's Newton
   // factorisation, which differs from the Jacobian only by dt H, dt T and the drift of the
@@ -196,7 +197,7 @@ Eigen::VectorXd UnifiedStep::structure_sensitivity_rhs(const StepSettings& s, co
     dvn.segment<3>(3 * j) << d[NodeState::kDvx], d[NodeState::kDvy], d[NodeState::kDwz];
   }
   for (int j = 0; j < n; ++j)
-    if (s_dof_[j] >= 0) v[j] = v_[s_dof_[j]];
+    if (num_.structure[j] >= 0) v[j] = v_[num_.structure[j]];
   Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
   model->add_tangent([&](int row, int col, double value) { r[row] -= value * dun[col]; });
   r += model->mass_times(dvn) / s.dt - model->mass_sensitivity_times(k, structure_acceleration(s, v)) -
@@ -207,7 +208,7 @@ Eigen::VectorXd UnifiedStep::structure_sensitivity_rhs(const StepSettings& s, co
 void UnifiedStep::commit_sensitivities(const StepSettings& s, NodeState& nodes) {
   const int num_params = static_cast<int>(s.sensitivity.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const int dx = vx_dof_[i], dy = vy_dof_[i], q = pdof_[i];
+    const int dx = num_.vx[i], dy = num_.vy[i], q = num_.p[i];
     for (int k = 0; k < num_params; ++k) {
       double* d = nodes.sensitivity(i, k);
       d[NodeState::kDp] = q >= 0 ? dp_(q, k) : 0.0;
@@ -229,7 +230,7 @@ void UnifiedStep::commit_sensitivities(const StepSettings& s, NodeState& nodes) 
   for (int k = 0; k < num_params; ++k) {
     for (std::size_t j = 0; j < sn.size(); ++j) {
       double* d = nodes.sensitivity(sn[j], k);
-      const int w = s_dof_[3 * j + 2];
+      const int w = num_.structure[3 * j + 2];
       d[NodeState::kDwz] = w >= 0 ? dv_(w, k) : 0.0;
       d[NodeState::kDrz] += s.dt * d[NodeState::kDwz];
       du.segment<3>(3 * j) << d[NodeState::kDx], d[NodeState::kDy], d[NodeState::kDrz];

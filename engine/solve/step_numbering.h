@@ -1,0 +1,52 @@
+#pragma once
+// The unknowns of one PFEM step and where each node's velocities and pressure
+// sit among them (engine/solve/fluid_step.h). Velocity unknowns come first: the
+// free nodes' x and y, a slip wall node's free component, the structure's free
+// dofs (a structure node's x and y velocity unknowns are the fluid's at that
+// node, its rotation rate its own), then two bubble unknowns per triangle;
+// pressures are numbered apart, one at every mesh node (free surface included).
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/mesh/remesher.h"
+#include "engine/solve/node_state.h"
+#include "engine/structure/structure_model.h"
+
+namespace pfem {
+
+struct StepNumbering {
+  std::vector<int> vx,
+      vy; // per node: its x, y velocity unknown or -1 (fixed, not in the mesh)
+  std::vector<int> p; // per node: its pressure unknown or -1 (not in the mesh)
+  std::vector<int>
+      structure; // per structure dof (3 per structure node): its unknown or -1
+  int node_velocities =
+      0;              // velocity unknowns of the nodes (bubbles follow them)
+  int velocities = 0; // ... and the bubbles'
+  int pressures = 0;
+
+  // The first of triangle e's two bubble unknowns.
+  int bubble(int e) const { return node_velocities + 2 * e; }
+  // A triangle's velocity unknowns: x, y of each corner (-1 where fixed), then
+  // its bubble's.
+  std::array<int, 8> element_velocities(const std::array<std::int32_t, 3> &tri,
+                                        int e) const;
+  // A triangle's unknowns in the condensed system (bubbles eliminated): corner
+  // velocities x0 y0 x1 y1 x2 y2, then the corner pressures, numbered after the
+  // node velocities (-1: none).
+  std::array<int, 9>
+  condensed_unknowns(const std::array<std::int32_t, 3> &tri) const;
+};
+
+// slip: per node (empty: none), kSlipX or kSlipY for a slip wall's node;
+// structure_node: the NodeState index of each structure node (model null: no
+// structure).
+StepNumbering number_unknowns(const mesh::FluidMesh &mesh,
+                              const NodeState &nodes,
+                              std::span<const std::uint8_t> slip,
+                              const structure::StructureModel *model,
+                              std::span<const int> structure_node);
+
+} // namespace pfem
