@@ -1,6 +1,5 @@
 #pragma once
 // Always-on validation of a pfem.v1.Model: every problem with the field path it concerns.
-#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -48,52 +47,7 @@ class ModelChecker {
   std::vector<FieldError> run_structure();
 
  private:
-  // Names of the structure's components -> their index in model.structure.
-  struct StructureNames {
-    std::map<std::string, int> nodes;      // explicit nodes only (generated ones are "<beam>/<k>")
-    std::map<std::string, int> materials;
-    std::map<std::string, int> sections;
-    std::map<std::string, int> beams;
-  };
-
-  void finite(const std::string& path, double v);
-  void positive(const std::string& path, double v);
-  void non_negative(const std::string& path, double v);
-  void error(const std::string& path, const std::string& message) { errors_.push_back({path, message}); }
-
-  void check_fluid();
-  void check_mesh();
-  void check_regions();
-  void check_walls();
-  void check_analysis();
-  void check_recorders();
-  void check_parameters();
-  void check_direction(const pfem::v1::Parameter& p, const std::string& path);
-  void check_domain();
-
-  void collect_structure_names();
-  void check_structure();
-  void check_structure_nodes();
-  void check_materials();
-  void check_sections();
-  void check_beams();
-  // Beams may touch walls and each other (a beam standing on the floor) but not cross them or
-  // lie along them: the triangulation takes both as constraints.
-  void check_beam_crossings();
-  // Names "<beam>/<k>" resolved against the beams: whether a node exists; the beam of an element (-1: none).
-  bool is_structure_node(const std::string& name) const;
-  int beam_of_element(const std::string& name) const;
-  void check_element_recorder(const pfem::v1::Recorder& r, const std::string& path);
-  void check_point(const pfem::v1::Recorder& r, const std::string& path);
-  void check_boundary_recorder(const pfem::v1::Recorder& r, const std::string& path);
-  void check_target(const std::string& target, const std::string& path);
-  // The motion of the wall of that name (nullptr: none, or it does not move).
-  const pfem::v1::WallMotion* wall_motion_named(const std::string& name) const;
-  void check_target_value(const std::string& target, double value, const std::string& path);
-
   const pfem::v1::Model& model_;
-  std::vector<FieldError> errors_;
-  StructureNames names_;
 };
 
 }  // namespace pfem

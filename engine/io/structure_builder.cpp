@@ -1,6 +1,7 @@
 #include "engine/io/structure_builder.h"
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
