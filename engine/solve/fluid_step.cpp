@@ -136,7 +136,7 @@ void UnifiedStep::factorize_global_bubble(const mesh::FluidMesh& mesh, const Ste
         if (const int q = num_.p[tri[a]]; q >= 0) gt.emplace_back(dof[r], q, m.G(r, a));
     }
   }
-  add_structure_tangent(s, [&kt](int row, int col, double value) { kt.emplace_back(row, col, value); });
+  structure_.add_tangent([&kt](int row, int col, double value) { kt.emplace_back(row, col, value); });
   SparseMatrix kvv(num_.velocities, num_.velocities);
   kvv.setFromTriplets(kt.begin(), kt.end());
   g_.resize(num_.velocities, num_.pressures);
@@ -213,7 +213,7 @@ void UnifiedStep::condensed_triplets(const mesh::FluidMesh& mesh, const StepSett
     const int u = num_.node_velocities + q;
     t.emplace_back(u, u, -mp_[q] / s.dt);
   }
-  add_structure_tangent(s, [&t](int row, int col, double value) { t.emplace_back(row, col, value); });
+  structure_.add_tangent([&t](int row, int col, double value) { t.emplace_back(row, col, value); });
 }
 
 namespace {
@@ -296,23 +296,15 @@ void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const 
     }
   }
   for (int q = 0; q < num_.pressures; ++q) lx[pressure_diagonal_[q]] -= mp_[q] / s.dt;
-  factor_structure_ = structure_tangent_lower(s);
+  factor_structure_ = structure_.tangent_lower();
   structure_in_factor_ = factor_structure_;
   for (const auto& t : factor_structure_) lx[condensed_solver_.block(t.row(), t.col()).base] += t.value();
   if (!condensed_solver_.factorize_values())
     throw StepFailure("the Newton matrix could not be factorised (zero or wrong-signed pivot)");
 }
 
-std::vector<Eigen::Triplet<double>> UnifiedStep::structure_tangent_lower(const StepSettings& s) const {
-  std::vector<Eigen::Triplet<double>> t;
-  add_structure_tangent(s, [&t](int row, int col, double value) {
-    if (row >= col) t.emplace_back(row, col, value);
-  });
-  return t;
-}
-
-bool UnifiedStep::update_structure_tangent(const StepSettings& s) {
-  std::vector<Eigen::Triplet<double>> current = structure_tangent_lower(s);
+bool UnifiedStep::update_structure_tangent() {
+  std::vector<Eigen::Triplet<double>> current = structure_.tangent_lower();
   // The change from the tangent the factor holds, relative to the tangent (Frobenius norms over
   // the structure's block, its unknowns numbered consecutively). Below kStructureTangentChange
   // (an elastic beam's geometric stiffness between iterates: 1e-12 to 1e-5 on the sloshing beam)
@@ -392,40 +384,6 @@ void UnifiedStep::correct_condensed_bubble(const mesh::FluidMesh& mesh) {
   p_ += dp.col(0);
 }
 
-void UnifiedStep::structure_residual(const StepSettings& s) {
-  auto* model = s.structure.model;
-  s_force_scale_ = 0.0;
-  if (!model) return;
-  Eigen::VectorXd v = Eigen::VectorXd::Zero(num_.structure.size());
-  for (std::size_t j = 0; j < num_.structure.size(); ++j)
-    if (num_.structure[j] >= 0) v[j] = v_[num_.structure[j]];
-  model->set_trial_displacement(s_un_ + s.dt * v);
-  const Eigen::VectorXd load = model->external_load(), inertia = model->mass_times(structure_acceleration(s, v));
-  const Eigen::VectorXd fs = model->resisting_force();
-  const Eigen::VectorXd r = load - inertia - model->damping_times(v) - fs;
-  s_force_scale_ = std::sqrt(load.squaredNorm() + inertia.squaredNorm() + fs.squaredNorm());
-  for (std::size_t j = 0; j < num_.structure.size(); ++j)
-    if (num_.structure[j] >= 0) rv_[num_.structure[j]] += r[j];
-}
-
-Eigen::VectorXd UnifiedStep::structure_acceleration(const StepSettings& s, const Eigen::VectorXd& v) const {
-  Eigen::VectorXd a = (v - s_vn_) / s.dt;
-  if (!s.structure.self_weight) return a;
-  for (long j = 0; j < a.size(); j += 3) a[j] -= s.gx, a[j + 1] -= s.gy;
-  return a;
-}
-
-void UnifiedStep::add_structure_tangent(const StepSettings& s, const structure::AddEntry& put) const {
-  const auto* model = s.structure.model;
-  if (!model) return;
-  const structure::AddEntry add = [&](int row, int col, double value) {
-    if (num_.structure[row] >= 0 && num_.structure[col] >= 0) put(num_.structure[row], num_.structure[col], value);
-  };
-  model->add_mass(add, 1.0 / s.dt);
-  model->add_damping(add, 1.0);
-  model->add_tangent(add, s.dt);  // at the trial state of the last residual
-}
-
 void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
   // A particle whose move crosses a wall or beam hits it (advance() takes it out): typically a
   // splash particle reaching the floor or the obstacle's back, in free-surface triangles that
@@ -460,16 +418,7 @@ void UnifiedStep::initial_iterate(const mesh::FluidMesh& mesh, const StepSetting
     if (num_.p[i] >= 0) p_[num_.p[i]] = pn_[i];
   }
 
-  // The structure's state at t_n, from its nodes (rotations included).
-  const auto& sn = s.structure.node;
-  s_un_.setZero(3 * sn.size());
-  s_vn_.setZero(3 * sn.size());
-  for (std::size_t k = 0; k < sn.size(); ++k) {
-    const int i = sn[k];
-    s_un_.segment<3>(3 * k) << nodes.x[i] - nodes.x0[i], nodes.y[i] - nodes.y0[i], nodes.rz[i];
-    s_vn_.segment<3>(3 * k) << nodes.vx[i], nodes.vy[i], nodes.wz[i];
-    if (const int d = num_.structure[3 * k + 2]; d >= 0) v_[d] = nodes.wz[i];
-  }
+  structure_.begin(s.structure, num_, s.dt, s.gx, s.gy, nodes, v_);
 }
 
 double UnifiedStep::relative_residual(const StepSettings& s) const {
@@ -503,7 +452,7 @@ void UnifiedStep::newton_correction(const mesh::FluidMesh& mesh, const StepSetti
   const bool global = s.formulation == StepSettings::Formulation::kGlobalBubble;
   auto t0 = Clock::now();
   const bool update = !first && !stalled && !global && s.structure.model;
-  if (first || stalled || (update && !update_structure_tangent(s))) {
+  if (first || stalled || (update && !update_structure_tangent())) {
     try {
       if (global) factorize_global_bubble(mesh, s, first);
       else factorize_condensed_bubble(mesh, s, first);
@@ -569,7 +518,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     auto t0 = Clock::now();
     element_terms(mesh, s);
     residuals(mesh);
-    structure_residual(s);
+    s_force_scale_ = structure_.add_residual(v_, rv_);
     report_.assemble_seconds += seconds_since(t0);
     newton.record(report_.residual = relative_residual(s));
     const int it = newton.iteration();

@@ -1,7 +1,8 @@
 #pragma once
 // One PFEM time step on a fixed mesh: the Newton solve of theory §4. Its parts: the numbering
-// of the unknowns (step_numbering.h), the loop's tests (newton_monitor.h), the bubble history
-// (bubble_history.h), the wall guard (wall_guard.h) and the DDM (step_sensitivity.cpp).
+// of the unknowns (step_numbering.h), the structure's rows and block (step_structure.h), the
+// loop's tests (newton_monitor.h), the bubble history (bubble_history.h), the wall guard
+// (wall_guard.h) and the DDM (step_sensitivity.cpp).
 //
 // Unknowns: a velocity at every free node in the mesh (wall nodes are fixed at v = 0), a
 // bubble velocity per triangle, and a pressure at every mesh node, free-surface nodes
@@ -50,21 +51,12 @@
 #include "engine/solve/newton_monitor.h"
 #include "engine/solve/node_state.h"
 #include "engine/solve/step_numbering.h"
+#include "engine/solve/step_structure.h"
 #include "engine/solve/supernodal_ldlt.h"
 #include "engine/solve/wall_guard.h"
 #include "engine/structure/structure_model.h"
 
 namespace pfem {
-
-// The structure in the monolithic step: its nodes are nodes of the NodeState (kind Structure,
-// boundary nodes of the fluid mesh) whose velocities are shared with the fluid; each also has a
-// rotation rate. The structure adds F_ext - M ((v - v_n)/dt - g) - C v - Fs(u_n + dt v) to its rows
-// and M/dt + C + dt dFs/du to the Newton matrix (theory §4).
-struct StructureCoupling {
-  structure::StructureModel* model = nullptr;
-  std::vector<int> node;     // NodeState index of each structure node
-  bool self_weight = true;  // gravity acts on its masses
-};
 
 struct StepSettings {
   double dt = 0.0;
@@ -162,19 +154,10 @@ class UnifiedStep {
   void newton_correction(const mesh::FluidMesh& mesh, const StepSettings& s, bool first, bool stalled);
   // The converged step to the nodes, the structure and the bubble history.
   void commit(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes);
-  // The structure's velocities, displacements at the iterate, and its residual rows added to rv_.
-  void structure_residual(const StepSettings& s);
-  // (v - v_n)/dt - g at every structure dof (g at the translations; 0 without self-weight): M
-  // times it is the inertia and the weight of the structure's masses.
-  Eigen::VectorXd structure_acceleration(const StepSettings& s, const Eigen::VectorXd& v) const;
-  // Entries of M/dt + C + dt dFs/du at the structure's unknowns.
-  void add_structure_tangent(const StepSettings& s, const structure::AddEntry& put) const;
-  // Those entries in the lower triangle, at the current trial state.
-  std::vector<Eigen::Triplet<double>> structure_tangent_lower(const StepSettings& s) const;
   // The condensed factorisation with the structure's part at the current iterate (the fluid's
   // part stays that of the last factorisation), unless that part barely changed; false when it
   // cannot be updated so.
-  bool update_structure_tangent(const StepSettings& s);
+  bool update_structure_tangent();
   // The volume correction's dilatation for this step, from the mesh's area at t_n.
   void volume_correction(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
   // Every element's geometry and residual at the current iterate (in parallel).
@@ -232,7 +215,6 @@ class UnifiedStep {
   // per parameter; then the sensitivities committed to the nodes, the bubbles and the structure
   // (before the structure's own commit).
   void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
-  Eigen::VectorXd structure_sensitivity_rhs(const StepSettings& s, const NodeState& nodes, int k) const;
   void commit_sensitivities(const StepSettings& s, NodeState& nodes);
   // Newton corrections from the current residuals with the last factorisation.
   void correct_global_bubble(const StepSettings& s);
@@ -241,8 +223,8 @@ class UnifiedStep {
   // Per step.
   StepReport report_;
   StepNumbering num_;
-  Eigen::VectorXd s_un_, s_vn_;                   // structure displacements and velocities at t_n
-  double s_force_scale_ = 0.0;                    // magnitude of the structure's forces at the iterate
+  StepStructure structure_;
+  double s_force_scale_ = 0.0;  // magnitude of the structure's forces at the iterate
   std::vector<double> xn_, yn_, vxn_, vyn_, pn_;  // state at t_n (per node)
   std::vector<std::uint8_t> hits_wall_;           // per node: hits a wall (check_admissible)
   std::vector<WallPiece> walls_;                  // the walls and beams at t_n and t_{n+1} (ditto)

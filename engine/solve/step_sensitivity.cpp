@@ -138,7 +138,7 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
     }
   }
   for (int k = 0; s.structure.model && k < num_params; ++k) {
-    const Eigen::VectorXd r = structure_sensitivity_rhs(s, nodes, k);
+    const Eigen::VectorXd r = structure_.sensitivity_rhs(nodes, k, v_);
     for (std::size_t j = 0; j < num_.structure.size(); ++j)
       if (num_.structure[j] >= 0) rv(num_.structure[j], k) += r[j];
   }
@@ -182,27 +182,6 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
                     rv, rp, dv_, dp_);
   }
   if (!dv_.allFinite() || !dp_.allFinite()) throw StepFailure("non-finite sensitivities");
-}
-
-// The structure's rows: r = F_ext - M (v - v_n)/dt - C v - Fs(u_n + dt v) differentiated,
-// -K_T du_n + M dv_n/dt - dM (v - v_n)/dt - dC v - dFs|u (loads hold no parameter).
-Eigen::VectorXd UnifiedStep::structure_sensitivity_rhs(const StepSettings& s, const NodeState& nodes, int k) const {
-  const auto* model = s.structure.model;
-  const auto& sn = s.structure.node;
-  const int n = model->num_dofs();
-  Eigen::VectorXd dun(n), dvn(n), v = Eigen::VectorXd::Zero(n);
-  for (std::size_t j = 0; j < sn.size(); ++j) {
-    const double* d = nodes.sensitivity(sn[j], k);
-    dun.segment<3>(3 * j) << d[NodeState::kDx], d[NodeState::kDy], d[NodeState::kDrz];
-    dvn.segment<3>(3 * j) << d[NodeState::kDvx], d[NodeState::kDvy], d[NodeState::kDwz];
-  }
-  for (int j = 0; j < n; ++j)
-    if (num_.structure[j] >= 0) v[j] = v_[num_.structure[j]];
-  Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
-  model->add_tangent([&](int row, int col, double value) { r[row] -= value * dun[col]; });
-  r += model->mass_times(dvn) / s.dt - model->mass_sensitivity_times(k, structure_acceleration(s, v)) -
-       model->damping_sensitivity_times(k, v) - model->resisting_force_sensitivity(k);
-  return r;
 }
 
 void UnifiedStep::commit_sensitivities(const StepSettings& s, NodeState& nodes) {
