@@ -31,26 +31,17 @@ void check_mesh(const pfem::v1::Model& model, FieldChecker& out) {
     const double d = model.mesh().removal_distance();
     if (!std::isfinite(d) || d < 0.0 || d > 0.5) out.error("mesh.removal_distance", "must be in [0, 0.5]");
   }
-  if (model.mesh().has_insertion_length()) {
-    const double l = model.mesh().insertion_length();
-    if (!std::isfinite(l) || (l != 0.0 && (l < 1.5 || l > 3.0)))
-      out.error("mesh.insertion_length", "must be 0 (off) or in [1.5, 3]");
-  }
-  if (model.mesh().has_interior_insertion_length()) {
-    const double l = model.mesh().interior_insertion_length();
-    if (!std::isfinite(l) || (l != 0.0 && (l < 1.5 || l > 3.0)))
-      out.error("mesh.interior_insertion_length", "must be 0 (same as insertion_length) or in [1.5, 3]");
-  }
-  if (model.mesh().has_boundary_alpha()) {
-    const double a = model.mesh().boundary_alpha();
-    if (!std::isfinite(a) || (a != 0.0 && (a < 0.6 || a > 3.0)))
-      out.error("mesh.boundary_alpha", "must be 0 (same as alpha) or in [0.6, 3]");
-  }
-  if (model.mesh().has_volume_relaxation_steps()) {
-    const double n = model.mesh().volume_relaxation_steps();
-    if (!std::isfinite(n) || (n != 0.0 && (n < 1.0 || n > 1000.0)))
-      out.error("mesh.volume_relaxation_steps", "must be 0 (off) or in [1, 1000]");
-  }
+  const auto& m = model.mesh();
+  if (m.has_insertion_length())
+    out.zero_or_within("mesh.insertion_length", m.insertion_length(), 1.5, 3.0, "must be 0 (off) or in [1.5, 3]");
+  if (m.has_interior_insertion_length())
+    out.zero_or_within("mesh.interior_insertion_length", m.interior_insertion_length(), 1.5, 3.0,
+                       "must be 0 (same as insertion_length) or in [1.5, 3]");
+  if (m.has_boundary_alpha())
+    out.zero_or_within("mesh.boundary_alpha", m.boundary_alpha(), 0.6, 3.0, "must be 0 (same as alpha) or in [0.6, 3]");
+  if (m.has_volume_relaxation_steps())
+    out.zero_or_within("mesh.volume_relaxation_steps", m.volume_relaxation_steps(), 1.0, 1000.0,
+                       "must be 0 (off) or in [1, 1000]");
 }
 
 void check_analysis(const pfem::v1::Model& model, FieldChecker& out) {

@@ -14,6 +14,8 @@ class FieldChecker {
   void finite(const std::string& path, double v);
   void positive(const std::string& path, double v);
   void non_negative(const std::string& path, double v);
+  // 0 (a setting's "off" or "default") or finite within [lo, hi]; else the message.
+  void zero_or_within(const std::string& path, double v, double lo, double hi, const std::string& message);
   void error(const std::string& path, const std::string& message) { errors_.push_back({path, message}); }
   void add(FieldError e) { errors_.push_back(std::move(e)); }
 
