@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "engine/io/field_checker.h"  // at()
 #include "engine/io/model_checks.h"
 #include "engine/structure/bilinear_material.h"
 #include "engine/structure/disp_beam_column.h"
@@ -16,8 +17,6 @@
 namespace pfem {
 
 namespace {
-
-std::string at(const std::string& path, int i) { return path + "[" + std::to_string(i) + "]"; }
 
 // A library error "field: rule (got x)" at prefix + fields[field] (an empty mapped field is the
 // prefix itself). Fields the map does not know keep the library's whole message at prefix.
