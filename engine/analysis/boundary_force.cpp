@@ -17,7 +17,8 @@ BoundaryLoad boundary_load(std::span<const std::array<std::int32_t, 2>> segments
   const Dual third{1.0 / 3.0, 0.0}, half{0.5, 0.0}, sixth{1.0 / 6.0, 0.0}, two{2.0, 0.0};
   const Dual X0{ax, 0.0}, Y0{ay, 0.0};
   Dual fx, fy, m;
-  for (const auto& tri : mesh.triangles) {
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& tri = mesh.triangles[f];
     std::array<int, 3> edge{};  // corner e starts an edge on the boundary
     int count = 0;
     for (int e = 0; e < 3; ++e)
@@ -27,7 +28,7 @@ BoundaryLoad boundary_load(std::span<const std::array<std::int32_t, 2>> segments
     for (int a = 0; a < 3; ++a) {
       x[a] = node_dual(nodes, tri[a], NodeState::kDx, k), y[a] = node_dual(nodes, tri[a], NodeState::kDy, k);
       vx[a] = node_dual(nodes, tri[a], NodeState::kDvx, k), vy[a] = node_dual(nodes, tri[a], NodeState::kDvy, k);
-      p[a] = node_dual(nodes, tri[a], NodeState::kDp, k);
+      p[a] = corner_pressure_dual(nodes, mesh, f, a, k);  // the side of this triangle's water
     }
     // P1 velocity gradient: dN_a/dx = (y_{a+1} - y_{a+2}) / D, dN_a/dy = (x_{a+2} - x_{a+1}) / D.
     const Dual D = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);

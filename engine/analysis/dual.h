@@ -25,4 +25,12 @@ inline Dual node_dual(const NodeState& nodes, int i, int which, int k) {
   return {value, k >= 0 ? nodes.sensitivity(i, k)[which] : 0.0};
 }
 
+// The pressure at corner a of triangle e (its side's, at a node of wall or beam lines) with its
+// sensitivity to parameter k (none for k < 0).
+inline Dual corner_pressure_dual(const NodeState& nodes, const mesh::FluidMesh& mesh, std::size_t e, int a, int k) {
+  const int i = mesh.triangles[e][a], side = mesh.side(e, a);
+  const bool multi = mesh.multi_sided(i);
+  return {nodes.pressure(i, multi, side), k >= 0 ? nodes.pressure_sensitivity(i, multi, side, k) : 0.0};
+}
+
 }  // namespace pfem

@@ -75,7 +75,7 @@ double pressure_at(const ProbeSite& site, const mesh::FluidMesh& mesh, const Nod
   const auto& t = mesh.triangles[site.triangle];
   const Barycentric b = barycentric(t, nodes, x, y, k);
   Dual p;
-  for (int a = 0; a < 3; ++a) p = p + b.part[a] / b.whole * node_dual(nodes, t[a], NodeState::kDp, k);
+  for (int a = 0; a < 3; ++a) p = p + b.part[a] / b.whole * corner_pressure_dual(nodes, mesh, site.triangle, a, k);
   return k < 0 ? p.v : p.d;
 }
 

@@ -5,17 +5,18 @@ namespace pfem {
 namespace {
 
 void archive(StateArchive& a, NodeState& n) {
-  a(n.x0), a(n.y0), a(n.x), a(n.y), a(n.vx), a(n.vy), a(n.p), a(n.rz), a(n.wz), a(n.kind);
+  a(n.x0), a(n.y0), a(n.x), a(n.y), a(n.vx), a(n.vy), a(n.p), a(n.side_p), a(n.rz), a(n.wz), a(n.kind);
   a.expect(static_cast<std::uint64_t>(n.num_params), "parameters of the nodes");
   a(n.sens);
   const std::size_t size = n.x.size();
   for (const auto* field : {&n.x0, &n.y0, &n.y, &n.vx, &n.vy, &n.p, &n.rz, &n.wz})
     if (field->size() != size) throw CheckpointError("checkpoint: node fields of different lengths");
-  if (n.kind.size() != size || n.sens.size() != size * n.num_params * NodeState::kSensitivityFields)
+  if (n.kind.size() != size || n.side_p.size() != size * mesh::kMaxPressureSides || n.sens.size() != size * n.num_params * NodeState::kSensitivityFields)
     throw CheckpointError("checkpoint: node fields of different lengths");
 }
 
-void archive(StateArchive& a, mesh::FluidMesh& m) { a(m.triangles), a(m.in_mesh), a(m.free_surface), a(m.contact_edges); }
+void archive(StateArchive& a, mesh::FluidMesh& m) { a(m.triangles), a(m.in_mesh), a(m.free_surface), a(m.contact_edges), a(m.sides), a(m.corner_side);
+}
 
 void archive(StateArchive& a, Histories& h) { a(h.columns), a(h.time), a(h.rows); }
 

@@ -158,7 +158,7 @@ int insert_particles(const mesh::FluidMesh& mesh, const Problem& problem, NodeSt
     nodes.x0[i] = nodes.x[i], nodes.y0[i] = nodes.y[i];  // displacements count from its birth
     nodes.p[i] = 0.5 * (nodes.p[a] + nodes.p[b]);
     for (int k = 0; k < nodes.num_params; ++k)
-      for (int f = 0; f < NodeState::kSensitivityFields; ++f)
+      for (int f = 0; f < NodeState::kDpSide; ++f)  // a particle has one side
         nodes.sensitivity(i, k)[f] = 0.5 * (nodes.sensitivity(a, k)[f] + nodes.sensitivity(b, k)[f]);
   }
   return static_cast<int>(edges.size());

@@ -195,6 +195,62 @@ bool is_free_edge(const Delaunay& tri, Delaunay::Face_handle f, int e,
          kind[f->vertex(Delaunay::cw(e))->info()] == NodeKind::Fluid;
 }
 
+// The sides of the wall and beam lines at their nodes (FluidMesh::sides, corner_side), from the
+// constrained edges of the triangulation itself: a node lying on a segment (which splits it) or
+// a merged duplicate gets the edges it really has.
+class LineSides {
+ public:
+  explicit LineSides(std::size_t n) : count(n, 1), neighbours_(n), done_(n, 0) {}
+  std::vector<std::uint8_t> count;
+
+  // The sides of face f's corners.
+  std::array<std::uint8_t, 3> of(Delaunay::Face_handle f, std::span<const NodeKind> kind) {
+    std::array<std::uint8_t, 3> side{};
+    for (int c = 0; c < 3; ++c) {
+      const VertexHandle v = f->vertex(c);
+      const std::int32_t i = v->info();
+      if (kind[i] != NodeKind::Wall && kind[i] != NodeKind::Structure) continue;
+      const std::vector<std::int32_t>& around = neighbours(v);
+      if (around.size() < 2) continue;
+      // Clockwise around v from f to the first constrained edge: its far end begins the sector.
+      Delaunay::Face_handle g = f;
+      for (std::size_t step = 0; step <= 4 * around.size() + 64; ++step) {
+        const int at = g->index(v), edge = Delaunay::cw(at);  // edge (v, ccw(at)'s vertex)
+        if (g->is_constrained(edge)) {
+          const std::int32_t start = g->vertex(Delaunay::ccw(at))->info();
+          const auto rank = std::lower_bound(around.begin(), around.end(), start) - around.begin();
+          side[c] = static_cast<std::uint8_t>(std::min<long>(rank, kMaxPressureSides - 1));
+          break;
+        }
+        g = g->neighbor(edge);
+      }
+    }
+    return side;
+  }
+
+ private:
+  // v's constrained neighbours, sorted by node index (once per node).
+  const std::vector<std::int32_t>& neighbours(VertexHandle v) {
+    const std::int32_t i = v->info();
+    if (done_[i]) return neighbours_[i];
+    done_[i] = 1;
+    auto& around = neighbours_[i];
+    auto e = v->incident_edges(), end = e;
+    do {
+      if (e->first->is_constrained(e->second)) {
+        const VertexHandle a = e->first->vertex(Delaunay::ccw(e->second)), b = e->first->vertex(Delaunay::cw(e->second));
+        around.push_back((a == v ? b : a)->info());
+      }
+    } while (++e != end);
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    count[i] = static_cast<std::uint8_t>(std::clamp<std::size_t>(around.size(), 1, kMaxPressureSides));
+    return around;
+  }
+  std::vector<std::vector<std::int32_t>> neighbours_;
+  std::vector<std::uint8_t> done_;
+};
+
 }  // namespace
 
 FluidMesh remesh(std::span<const double> x, std::span<const double> y,
@@ -228,6 +284,7 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
       vertex_of[v->info()] = v;
   }
   if (constrained) insert_constraints(tri, options.constraints, vertex_of);
+  LineSides sides(n);
 
   // Pass 1: alpha test and fluid test per finite face; record kept triangles.
   const double max_radius = options.alpha * options.h;
@@ -369,7 +426,9 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
     const std::int32_t i2 = f->vertex(2)->info();
     mesh.triangles.push_back({i0, i1, i2});  // CGAL faces are counter-clockwise
     mesh.in_mesh[i0] = mesh.in_mesh[i1] = mesh.in_mesh[i2] = 1;
+    if (constrained) mesh.corner_side.push_back(sides.of(f, kind));
   }
+  if (constrained) mesh.sides = std::move(sides.count);
 
   // Pass 2: both ends of a free edge (see is_free_edge) are on the free surface, wall nodes at
   // the contact line too. A constraint edge is never free: the triangle on its other side was

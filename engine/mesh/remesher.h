@@ -14,6 +14,10 @@ namespace pfem::mesh {
 // Removed particles (taken out for mesh quality) keep their index but are not triangulated.
 enum class NodeKind : std::uint8_t { Fluid = 0, Wall = 1, Structure = 2, Removed = 3 };
 
+// A node on wall or beam lines has one pressure per side of them (FluidMesh::corner_side), at
+// most this many (the sides past the last share its pressure).
+inline constexpr int kMaxPressureSides = 4;
+
 struct RemeshOptions {
   double h = 0.0;      // particle spacing [m], > 0
   double alpha = 1.2;  // keep a triangle when its circumradius <= alpha * h
@@ -69,6 +73,18 @@ struct FluidMesh {
   // Free edges from a fluid particle to a wall node (particle, wall node): where the free
   // surface meets a wall (see contact_line.h), in the order of the triangulation's faces.
   std::vector<std::array<std::int32_t, 2>> contact_edges;
+  // The sides of the wall and beam lines (the constraints) at a node: its constrained edges cut
+  // the plane around it into sectors, and the water in each sector has its own pressure there
+  // (a plate with water on both sides carries the difference; one pressure for both would
+  // cancel the pressure's load wherever both sides are wet). Per node, its number of sides (1:
+  // one pressure; up to kMaxPressureSides); per triangle and corner, the side it lies on: the
+  // rank, among the node's constrained neighbours sorted by index, of the neighbour where its
+  // sector begins (counter-clockwise). Empty (no constraints): one side everywhere.
+  std::vector<std::uint8_t> sides;
+  std::vector<std::array<std::uint8_t, 3>> corner_side;
+
+  bool multi_sided(std::size_t node) const { return node < sides.size() && sides[node] > 1; }
+  int side(std::size_t triangle, int corner) const { return corner_side.empty() ? 0 : corner_side[triangle][corner]; }
 };
 
 // Triangulates the nodes (x[i], y[i]) of kinds kind[i], honouring options.constraints.

@@ -73,13 +73,13 @@ fluid::ElementState UnifiedStep::element_state(const mesh::FluidMesh& mesh, int 
   fluid::ElementState st;
   const auto& tri = mesh.triangles[e];
   for (int a = 0; a < 3; ++a) {
-    const int i = tri[a], q = num_.p[i];
+    const int i = tri[a], q = num_.corner_p[e][a];
     st.v(2 * a) = velocity_x(i);
     st.v(2 * a + 1) = velocity_y(i);
     st.vn(2 * a) = vxn_[i];
     st.vn(2 * a + 1) = vyn_[i];
-    st.p(a) = q >= 0 ? p_[q] : 0.0;
-    st.pn(a) = pn_[i];
+    st.p(a) = p_[q];
+    st.pn(a) = pn_[q];
   }
   const int b = num_.bubble(e);
   st.v(6) = v_[b], st.v(7) = v_[b + 1];
@@ -103,11 +103,11 @@ void UnifiedStep::residuals(const mesh::FluidMesh& mesh) {
     const auto& r = element_residuals_[e];
     const auto& tri = mesh.triangles[e];
     for (int a = 0; a < 3; ++a) {
-      const int i = tri[a], dx = num_.vx[i], dy = num_.vy[i], q = num_.p[i];
+      const int i = tri[a], dx = num_.vx[i], dy = num_.vy[i], q = num_.corner_p[e][a];
       if (dx >= 0) rv_[dx] += r.rv(2 * a);
       if (dy >= 0) rv_[dy] += r.rv(2 * a + 1);
-      if (q >= 0) rp_[q] += r.rp(a), rp_abs_[q] += r.rp_abs(a), mp_[q] += r.mp;
-      if (q >= 0 && dilatation_ != 0.0) {
+      rp_[q] += r.rp(a), rp_abs_[q] += r.rp_abs(a), mp_[q] += r.mp;
+      if (dilatation_ != 0.0) {
         const double source = source_scale_ * element_area_n_[e];  // the dilatation's share of the corner
         rp_[q] += source, rp_abs_[q] += std::abs(source);
       }
@@ -132,8 +132,7 @@ void UnifiedStep::factorize_global_bubble(const mesh::FluidMesh& mesh, const Ste
       if (dof[r] < 0) continue;
       for (int c = 0; c < 8; ++c)
         if (dof[c] >= 0) kt.emplace_back(dof[r], dof[c], m.M(r, c) * inv_dt + m.K(r, c));
-      for (int a = 0; a < 3; ++a)
-        if (const int q = num_.p[tri[a]]; q >= 0) gt.emplace_back(dof[r], q, m.G(r, a));
+      for (int a = 0; a < 3; ++a) gt.emplace_back(dof[r], num_.corner_p[e][a], m.G(r, a));
     }
   }
   structure_.add_tangent([&kt](int row, int col, double value) { kt.emplace_back(row, col, value); });
@@ -204,7 +203,7 @@ void UnifiedStep::condensed_triplets(const mesh::FluidMesh& mesh, const StepSett
   CondensedElement k;
   for (int e = 0; e < ne; ++e) {
     condense_element(e, s, &geometric[e], bubbles[e], k);
-    const std::array<int, 9> u = num_.condensed_unknowns(mesh.triangles[e]);
+    const std::array<int, 9> u = num_.condensed_unknowns(mesh.triangles[e], e);
     for (int r = 0; r < 9; ++r)
       for (int c = 0; c < 9; ++c)
         if (u[r] >= 0 && u[c] >= 0) t.emplace_back(u[r], u[c], k(r, c));
@@ -230,8 +229,8 @@ void UnifiedStep::analyze_condensed(const mesh::FluidMesh& mesh, const StepSetti
   for (std::size_t i = 0; i < num_.vx.size(); ++i) {
     if (num_.vx[i] >= 0) node_of[num_.vx[i]] = static_cast<int>(i);
     if (num_.vy[i] >= 0) node_of[num_.vy[i]] = static_cast<int>(i);
-    if (num_.p[i] >= 0) node_of[num_.node_velocities + num_.p[i]] = static_cast<int>(i);
   }
+  for (int q = 0; q < num_.pressures; ++q) node_of[num_.node_velocities + q] = num_.pressure_node[q];
   for (std::size_t j = 0; j < num_.structure.size(); ++j)
     if (const int d = num_.structure[j]; d >= 0) node_of[d] = s.structure.node[j / 3], structure_unknowns.push_back(d);
   std::vector<std::array<int, 2>> couplings;
@@ -282,7 +281,7 @@ void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const 
   CondensedElement k;
   for (int e = 0; e < ne; ++e) {
     condense_element(e, s, nullptr, bubbles_[e], k);
-    const std::array<int, 9> u = num_.condensed_unknowns(mesh.triangles[e]);
+    const std::array<int, 9> u = num_.condensed_unknowns(mesh.triangles[e], e);
     for (std::size_t p = 0; p < kCornerPairs.size(); ++p) {
       const SupernodalLdlt::Block& b = element_blocks_[e][p];
       if (b.base < 0) continue;
@@ -346,7 +345,7 @@ void UnifiedStep::solve_condensed(const mesh::FluidMesh& mesh, const std::vector
       for (int k = 0; k < 3; ++k) {
         if (const int dx = num_.vx[tri[k]]; dx >= 0) rhs(dx, c) -= b.a_cb.row(2 * k).dot(ze);
         if (const int dy = num_.vy[tri[k]]; dy >= 0) rhs(dy, c) -= b.a_cb.row(2 * k + 1).dot(ze);
-        if (const int q = num_.p[tri[k]]; q >= 0) rhs(num_.node_velocities + q, c) += b.gc_b.col(k).dot(ze);
+        rhs(num_.node_velocities + num_.corner_p[e][k], c) += b.gc_b.col(k).dot(ze);
       }
     }
   }
@@ -362,10 +361,10 @@ void UnifiedStep::solve_condensed(const mesh::FluidMesh& mesh, const std::vector
       Eigen::Matrix<double, 6, 1> dvc;
       Eigen::Vector3d dpe;
       for (int k = 0; k < 3; ++k) {
-        const int dx = num_.vx[tri[k]], dy = num_.vy[tri[k]], q = num_.p[tri[k]];
+        const int dx = num_.vx[tri[k]], dy = num_.vy[tri[k]];
         dvc(2 * k) = dx >= 0 ? x(dx, c) : 0.0;
         dvc(2 * k + 1) = dy >= 0 ? x(dy, c) : 0.0;
-        dpe(k) = q >= 0 ? x(num_.node_velocities + q, c) : 0.0;
+        dpe(k) = x(num_.node_velocities + num_.corner_p[e][k], c);
       }
       dv.col(c).segment<2>(num_.bubble(e)) = z.col(c).segment<2>(2 * e) + b.inv_bb * (b.g_b * dpe - b.a_bc * dvc);
     }
@@ -411,12 +410,16 @@ void UnifiedStep::initial_iterate(const mesh::FluidMesh& mesh, const StepSetting
   v_.setZero(num_.velocities);
   bubble_history_.restore(mesh.triangles, static_cast<int>(s.sensitivity.size()), vbn_, dvbn_);
   for (std::size_t e = 0; e < mesh.triangles.size(); ++e) v_.segment<2>(num_.bubble(e)) = vbn_[e];
-  p_.setZero(num_.pressures);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (num_.vx[i] >= 0) v_[num_.vx[i]] = vxn_[i];
     if (num_.vy[i] >= 0) v_[num_.vy[i]] = vyn_[i];
-    if (num_.p[i] >= 0) p_[num_.p[i]] = pn_[i];
   }
+  pn_.resize(num_.pressures);
+  for (int q = 0; q < num_.pressures; ++q) {
+    const int i = num_.pressure_node[q];
+    pn_[q] = nodes.pressure(i, mesh.multi_sided(i), num_.pressure_side[q]);
+  }
+  p_ = pn_;
 
   structure_.begin(s.structure, num_, s.dt, s.gx, s.gy, nodes, v_);
 }
@@ -490,9 +493,9 @@ void UnifiedStep::commit(const mesh::FluidMesh& mesh, const StepSettings& s, Nod
     nodes.wz[sn[k]] = d >= 0 ? v_[d] : 0.0;
     nodes.rz[sn[k]] += s.dt * nodes.wz[sn[k]];
   }
-  for (std::size_t i = 0; i < nodes.size(); ++i) nodes.p[i] = num_.p[i] >= 0 ? p_[num_.p[i]] : 0.0;
+  commit_pressures(mesh, nodes);
   const int num_params = static_cast<int>(s.sensitivity.size());
-  if (num_params > 0) commit_sensitivities(s, nodes);
+  if (num_params > 0) commit_sensitivities(mesh, s, nodes);
   if (s.structure.model) s.structure.model->commit();
   move_free_particles(mesh.in_mesh, walls_, {s.gx, s.gy}, s.dt, nodes);
   const int bubbles = num_.velocities - num_.node_velocities;
@@ -500,10 +503,25 @@ void UnifiedStep::commit(const mesh::FluidMesh& mesh, const StepSettings& s, Nod
                         num_params > 0 ? Eigen::MatrixXd(dv_.bottomRows(bubbles)) : Eigen::MatrixXd());
 }
 
+void UnifiedStep::commit_pressures(const mesh::FluidMesh& mesh, NodeState& nodes) const {
+  // A node's p is the mean of its wet sides' (its one pressure but at wall and beam lines); each
+  // side of a node of several keeps its own, NaN where dry.
+  std::fill(nodes.p.begin(), nodes.p.end(), 0.0);
+  std::fill(nodes.side_p.begin(), nodes.side_p.end(), NodeState::kNoSide);
+  std::vector<int> wet(nodes.size(), 0);
+  for (int q = 0; q < num_.pressures; ++q) {
+    const int i = num_.pressure_node[q];
+    nodes.p[i] = wet[i]++ ? nodes.p[i] + p_[q] : p_[q];
+    if (mesh.multi_sided(i)) nodes.side_p[i * mesh::kMaxPressureSides + num_.pressure_side[q]] = p_[q];
+  }
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (wet[i] > 1) nodes.p[i] /= wet[i];
+}
+
 StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes,
                                 const std::atomic<bool>* cancel) {
   report_ = StepReport{};
-  xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy, pn_ = nodes.p;
+  xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy;
   wall_velocity_ = s.wall_velocity;
   if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
   num_ = number_unknowns(mesh, nodes, s.slip, s.structure.model, s.structure.node);

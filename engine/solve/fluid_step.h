@@ -154,6 +154,8 @@ class UnifiedStep {
   void newton_correction(const mesh::FluidMesh& mesh, const StepSettings& s, bool first, bool stalled);
   // The converged step to the nodes, the structure and the bubble history.
   void commit(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes);
+  // The converged pressures to the nodes (a node's p, and its sides' at wall and beam lines).
+  void commit_pressures(const mesh::FluidMesh& mesh, NodeState& nodes) const;
   // The condensed factorisation with the structure's part at the current iterate (the fluid's
   // part stays that of the last factorisation), unless that part barely changed; false when it
   // cannot be updated so.
@@ -215,7 +217,8 @@ class UnifiedStep {
   // per parameter; then the sensitivities committed to the nodes, the bubbles and the structure
   // (before the structure's own commit).
   void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
-  void commit_sensitivities(const StepSettings& s, NodeState& nodes);
+  void commit_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes);
+  void commit_pressure_sensitivities(const mesh::FluidMesh& mesh, NodeState& nodes, int num_params) const;
   // Newton corrections from the current residuals with the last factorisation.
   void correct_global_bubble(const StepSettings& s);
   void correct_condensed_bubble(const mesh::FluidMesh& mesh);
@@ -225,7 +228,8 @@ class UnifiedStep {
   StepNumbering num_;
   StepStructure structure_;
   double s_force_scale_ = 0.0;  // magnitude of the structure's forces at the iterate
-  std::vector<double> xn_, yn_, vxn_, vyn_, pn_;  // state at t_n (per node)
+  std::vector<double> xn_, yn_, vxn_, vyn_;  // state at t_n (per node)
+  Eigen::VectorXd pn_;                       // ... and the pressures there (per unknown)
   std::vector<std::uint8_t> hits_wall_;           // per node: hits a wall (check_admissible)
   std::vector<WallPiece> walls_;                  // the walls and beams at t_n and t_{n+1} (ditto)
   std::span<const double> wall_velocity_;         // StepSettings::wall_velocity of this step

@@ -2,7 +2,10 @@
 // The nodal state every part of a step reads and writes: fluid particles, wall nodes and
 // (later) structure nodes in one set of arrays. Everything lives on nodes so that it survives
 // remeshing (theory §6, step 4).
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -18,11 +21,16 @@ struct NodeState {
   std::vector<double> x0, y0;  // positions at t = 0 [m]
   std::vector<double> x, y;    // current positions [m]
   std::vector<double> vx, vy;  // velocities [m/s]
-  std::vector<double> p;       // pressures [Pa]
+  std::vector<double> p;       // pressures [Pa]; at a node of several sides, the mean of its wet ones
+  // Per node, mesh::kMaxPressureSides entries: the pressure on each side of a node of wall or
+  // beam lines (mesh::FluidMesh::sides), NaN on a side that had no water (or a node of one
+  // side). A side that gets water starts from the node's p.
+  std::vector<double> side_p;
   std::vector<double> rz, wz;  // rotation [rad] and its rate [rad/s] (structure nodes only)
   std::vector<mesh::NodeKind> kind;
   // DDM: per node and parameter, the sensitivities of the fields below (empty without DDM).
-  enum Sensitivity { kDx, kDy, kDvx, kDvy, kDp, kDrz, kDwz, kSensitivityFields };
+  // kDpSide + s: the sensitivity of side_p's side s (NaN as it is).
+  enum Sensitivity { kDx, kDy, kDvx, kDvy, kDp, kDrz, kDwz, kDpSide, kSensitivityFields = kDpSide + mesh::kMaxPressureSides };
   int num_params = 0;
   std::vector<double> sens;  // sens[(node * num_params + k) * kSensitivityFields + field]
 
@@ -31,12 +39,29 @@ struct NodeState {
     x0.push_back(px), y0.push_back(py), x.push_back(px), y.push_back(py);
     vx.push_back(pvx), vy.push_back(pvy), p.push_back(0.0), kind.push_back(k);
     rz.push_back(0.0), wz.push_back(0.0);
-    sens.resize(sens.size() + num_params * kSensitivityFields, 0.0);
+    side_p.resize(side_p.size() + mesh::kMaxPressureSides, kNoSide);
+    const std::size_t begin = sens.size();
+    sens.resize(begin + num_params * kSensitivityFields, 0.0);
+    for (std::size_t f = begin; f < sens.size(); f += kSensitivityFields)
+      std::fill_n(&sens[f + kDpSide], mesh::kMaxPressureSides, kNoSide);
     return static_cast<int>(x.size()) - 1;
   }
   void set_num_params(int count) {
     num_params = count;
     sens.assign(size() * count * kSensitivityFields, 0.0);
+    for (std::size_t f = 0; f < sens.size(); f += kSensitivityFields)
+      std::fill_n(&sens[f + kDpSide], mesh::kMaxPressureSides, kNoSide);
+  }
+  static constexpr double kNoSide = std::numeric_limits<double>::quiet_NaN();
+  // The pressure at t_n of side `side` of node i, in a mesh where it has several sides or not
+  // (a side without water yet starts from the node's p), and its sensitivity to parameter k.
+  double pressure(std::size_t i, bool multi_sided, int side) const {
+    const double v = multi_sided ? side_p[i * mesh::kMaxPressureSides + side] : kNoSide;
+    return std::isnan(v) ? p[i] : v;
+  }
+  double pressure_sensitivity(std::size_t i, bool multi_sided, int side, int k) const {
+    const double* d = sensitivity(i, k);
+    return multi_sided && !std::isnan(d[kDpSide + side]) ? d[kDpSide + side] : d[kDp];
   }
   double* sensitivity(std::size_t node, int k) { return &sens[(node * num_params + k) * kSensitivityFields]; }
   const double* sensitivity(std::size_t node, int k) const {

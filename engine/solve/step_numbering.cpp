@@ -11,7 +11,13 @@ StepNumbering number_unknowns(const mesh::FluidMesh &mesh,
   const std::size_t n = nodes.size();
   u.vx.assign(n, -1);
   u.vy.assign(n, -1);
-  u.p.assign(n, -1);
+  // The sides of each node that have water (bit s: side s).
+  std::vector<std::uint8_t> wet(n, 0);
+  const std::size_t ne = mesh.triangles.size();
+  for (std::size_t e = 0; e < ne; ++e)
+    for (int a = 0; a < 3; ++a)
+      wet[mesh.triangles[e][a]] |= static_cast<std::uint8_t>(1u << mesh.side(e, a));
+  std::vector<int> side_unknown(n * mesh::kMaxPressureSides, -1);
   for (std::size_t i = 0; i < n; ++i) {
     if (!mesh.in_mesh[i])
       continue;
@@ -23,8 +29,21 @@ StepNumbering number_unknowns(const mesh::FluidMesh &mesh,
     else if (nodes.kind[i] == mesh::NodeKind::Wall && i < slip.size() &&
              slip[i] == kSlipY)
       u.vy[i] = u.node_velocities++;
-    u.p[i] = u.pressures++; // on the free surface too (see fluid_step.h)
+    for (int side = 0; side < mesh::kMaxPressureSides; ++side) {
+      if (!(wet[i] >> side & 1u))
+        continue;
+      // on the free surface too (see fluid_step.h)
+      side_unknown[i * mesh::kMaxPressureSides + side] = u.pressures++;
+      u.pressure_node.push_back(static_cast<int>(i));
+      u.pressure_side.push_back(static_cast<std::uint8_t>(side));
+    }
   }
+  u.corner_p.resize(ne);
+  for (std::size_t e = 0; e < ne; ++e)
+    for (int a = 0; a < 3; ++a)
+      u.corner_p[e][a] =
+          side_unknown[mesh.triangles[e][a] * mesh::kMaxPressureSides +
+                       mesh.side(e, a)];
   // Structure nodes move with the structure whether or not water touches them;
   // a supported dof has no unknown.
   u.structure.assign(model ? model->num_dofs() : 0, -1);
@@ -56,11 +75,11 @@ StepNumbering::element_velocities(const std::array<std::int32_t, 3> &tri,
 }
 
 std::array<int, 9> StepNumbering::condensed_unknowns(
-    const std::array<std::int32_t, 3> &tri) const {
+    const std::array<std::int32_t, 3> &tri, int e) const {
   std::array<int, 9> u;
   for (int c = 0; c < 3; ++c) {
     u[2 * c] = vx[tri[c]], u[2 * c + 1] = vy[tri[c]];
-    u[6 + c] = p[tri[c]] >= 0 ? node_velocities + p[tri[c]] : -1;
+    u[6 + c] = node_velocities + corner_p[e][c];
   }
   return u;
 }

@@ -4,7 +4,8 @@
 // free nodes' x and y, a slip wall node's free component, the structure's free
 // dofs (a structure node's x and y velocity unknowns are the fluid's at that
 // node, its rotation rate its own), then two bubble unknowns per triangle;
-// pressures are numbered apart, one at every mesh node (free surface included).
+// pressures are numbered apart, one at every mesh node (free surface included) and one per wet
+// side at a node of wall or beam lines (mesh::FluidMesh::sides), node by node.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -19,7 +20,9 @@ namespace pfem {
 struct StepNumbering {
   std::vector<int> vx,
       vy; // per node: its x, y velocity unknown or -1 (fixed, not in the mesh)
-  std::vector<int> p; // per node: its pressure unknown or -1 (not in the mesh)
+  std::vector<std::array<int, 3>> corner_p; // per triangle: its corners' pressure unknowns
+  std::vector<int> pressure_node;           // per pressure unknown: its node ...
+  std::vector<std::uint8_t> pressure_side;  // ... and the side of it
   std::vector<int>
       structure; // per structure dof (3 per structure node): its unknown or -1
   int node_velocities =
@@ -35,9 +38,9 @@ struct StepNumbering {
                                         int e) const;
   // A triangle's unknowns in the condensed system (bubbles eliminated): corner
   // velocities x0 y0 x1 y1 x2 y2, then the corner pressures, numbered after the
-  // node velocities (-1: none).
+  // node velocities.
   std::array<int, 9>
-  condensed_unknowns(const std::array<std::int32_t, 3> &tri) const;
+  condensed_unknowns(const std::array<std::int32_t, 3> &tri, int e) const;
 };
 
 // slip: per node (empty: none), kSlipX or kSlipY for a slip wall's node;

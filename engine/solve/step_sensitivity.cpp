@@ -102,7 +102,7 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
         const double* d = nodes.sensitivity(tri[a], k);
         dxn(2 * a) = d[NodeState::kDx], dxn(2 * a + 1) = d[NodeState::kDy];
         dvn(2 * a) = d[NodeState::kDvx], dvn(2 * a + 1) = d[NodeState::kDvy];
-        dpn(a) = d[NodeState::kDp];
+        dpn(a) = nodes.pressure_sensitivity(tri[a], mesh.multi_sided(tri[a]), mesh.side(e, a), k);
       }
       dvn.tail<2>() = dvbn_[e].col(k);
       fluid::Vec8 sv = gd.drv_dx * dxn + m.M * dvn * inv_dt;
@@ -129,10 +129,10 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
                       s.thickness / 3.0 * (ddilatation(k) * element_area_n_[e] + dilatation_ * da);
       }
       for (int a = 0; a < 3; ++a) {
-        const int i = tri[a], dx = num_.vx[i], dy = num_.vy[i], q = num_.p[i];
+        const int i = tri[a], dx = num_.vx[i], dy = num_.vy[i];
         if (dx >= 0) rv(dx, k) += sv(2 * a);
         if (dy >= 0) rv(dy, k) += sv(2 * a + 1);
-        if (q >= 0) rp(q, k) += sp(a);
+        rp(num_.corner_p[e][a], k) += sp(a);
       }
       rv(bubble, k) += sv(6), rv(bubble + 1, k) += sv(7);
     }
@@ -184,13 +184,36 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
   if (!dv_.allFinite() || !dp_.allFinite()) throw StepFailure("non-finite sensitivities");
 }
 
-void UnifiedStep::commit_sensitivities(const StepSettings& s, NodeState& nodes) {
-  const int num_params = static_cast<int>(s.sensitivity.size());
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const int dx = num_.vx[i], dy = num_.vy[i], q = num_.p[i];
+void UnifiedStep::commit_pressure_sensitivities(const mesh::FluidMesh& mesh, NodeState& nodes, int num_params) const {
+  // As commit_pressures: a node's the mean of its wet sides', each side's its own.
+  std::vector<int> wet(nodes.size(), 0);
+  for (int q = 0; q < num_.pressures; ++q) ++wet[num_.pressure_node[q]];
+  for (std::size_t i = 0; i < nodes.size(); ++i)
     for (int k = 0; k < num_params; ++k) {
       double* d = nodes.sensitivity(i, k);
-      d[NodeState::kDp] = q >= 0 ? dp_(q, k) : 0.0;
+      d[NodeState::kDp] = 0.0;
+      std::fill_n(d + NodeState::kDpSide, mesh::kMaxPressureSides, NodeState::kNoSide);
+    }
+  std::vector<int> seen(nodes.size(), 0);
+  for (int q = 0; q < num_.pressures; ++q) {
+    const int i = num_.pressure_node[q];
+    const bool first = seen[i]++ == 0;
+    for (int k = 0; k < num_params; ++k) {
+      double* d = nodes.sensitivity(i, k);
+      d[NodeState::kDp] = first ? dp_(q, k) : d[NodeState::kDp] + dp_(q, k);
+      if (seen[i] == wet[i] && wet[i] > 1) d[NodeState::kDp] /= wet[i];
+      if (mesh.multi_sided(i)) d[NodeState::kDpSide + num_.pressure_side[q]] = dp_(q, k);
+    }
+  }
+}
+
+void UnifiedStep::commit_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) {
+  const int num_params = static_cast<int>(s.sensitivity.size());
+  commit_pressure_sensitivities(mesh, nodes, num_params);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const int dx = num_.vx[i], dy = num_.vy[i];
+    for (int k = 0; k < num_params; ++k) {
+      double* d = nodes.sensitivity(i, k);
       // A particle that hit a wall is taken out where it was (advance()): it keeps its state.
       if ((dx < 0 && dy < 0) || hits_wall_[i]) continue;
       const auto wall = [&](int c) {

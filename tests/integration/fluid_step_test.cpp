@@ -172,7 +172,7 @@ TEST(FluidStep, AParticleTakenOutAtAWallKeepsItsSensitivities) {
       ++removed;
       EXPECT_EQ(nodes.x[i], before.x[i]);
       EXPECT_EQ(nodes.y[i], before.y[i]);
-      for (int f = 0; f < NodeState::kSensitivityFields; ++f) {
+      for (int f = 0; f < NodeState::kDpSide; ++f) {
         if (f != NodeState::kDp) {
           EXPECT_EQ(nodes.sensitivity(i, 0)[f], before.sensitivity(i, 0)[f]) << i << " " << f;
         }
