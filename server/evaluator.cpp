@@ -10,20 +10,6 @@
 #include "wire/convert.h"
 
 namespace pfem::server {
-namespace {
-
-FunctionalKind kind_of(pfem::v1::Functional::Kind kind) {
-  switch (kind) {
-    case pfem::v1::Functional::KIND_VALUE_AT: return FunctionalKind::kValueAt;
-    case pfem::v1::Functional::KIND_MAX: return FunctionalKind::kMax;
-    case pfem::v1::Functional::KIND_MIN: return FunctionalKind::kMin;
-    case pfem::v1::Functional::KIND_MAX_ABS: return FunctionalKind::kMaxAbs;
-    default: return FunctionalKind::kFinal;
-  }
-}
-
-}  // namespace
-
 void Evaluator::evaluate(const pfem::v1::EvaluateRequest& request, const StopFunction& should_stop,
                          pfem::v1::EvaluateResponse* response) const {
   const auto started = std::chrono::steady_clock::now();
@@ -70,7 +56,7 @@ void Evaluator::evaluate(const pfem::v1::EvaluateRequest& request, const StopFun
   const std::vector<std::string> no_params;
   for (int i = 0; i < request.functionals_size(); ++i) {
     const auto& f = request.functionals(i);
-    FunctionalSpec spec{f.recorder(), kind_of(f.kind()), f.time()};
+    const FunctionalSpec spec = functional_spec(f);
     FunctionalValue v;
     try {
       v = evaluate_functional(result->responses, result->sensitivities,

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "engine/analysis/functional.h"
 #include "engine/analysis/run_estimate.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
@@ -43,6 +44,27 @@ pfem::v1::Model check_run_request(
   return model;
 }
 
+namespace {
+
+FunctionalKind kind_of(pfem::v1::Functional::Kind kind) {
+  switch (kind) {
+    case pfem::v1::Functional::KIND_VALUE_AT: return FunctionalKind::kValueAt;
+    case pfem::v1::Functional::KIND_MAX: return FunctionalKind::kMax;
+    case pfem::v1::Functional::KIND_MIN: return FunctionalKind::kMin;
+    case pfem::v1::Functional::KIND_MAX_ABS: return FunctionalKind::kMaxAbs;
+    default: return FunctionalKind::kFinal;
+  }
+}
+
+}  // namespace
+
+FunctionalSpec functional_spec(const pfem::v1::Functional& f) {
+  FunctionalSpec spec{f.recorder(), kind_of(f.kind()), f.time()};
+  if (f.has_window_start()) spec.window_start = f.window_start();
+  if (f.has_window_end()) spec.window_end = f.window_end();
+  return spec;
+}
+
 std::vector<FieldError> check_functionals(
     const pfem::v1::Model& model,
     const google::protobuf::RepeatedPtrField<pfem::v1::Functional>& functionals) {
@@ -59,6 +81,8 @@ std::vector<FieldError> check_functionals(
     if (f.kind() == pfem::v1::Functional::KIND_UNSPECIFIED ||
         !pfem::v1::Functional::Kind_IsValid(f.kind())) {
       errors.push_back({path + ".kind", "must be VALUE_AT, MAX, MIN, MAX_ABS or FINAL"});
+    } else if (auto bad = check_functional_window(functional_spec(f))) {
+      errors.push_back({path + "." + bad->first, bad->second});
     }
     if (f.kind() == pfem::v1::Functional::KIND_VALUE_AT && !std::isfinite(f.time())) {
       errors.push_back({path + ".time", "must be finite"});

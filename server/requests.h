@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/analysis/functional.h"
 #include "engine/analysis/run.h"
 #include "engine/io/model_io.h"
 #include "pfem/v1/service.pb.h"
@@ -47,6 +48,9 @@ EvaluateRun check_evaluate_request(const pfem::v1::EvaluateRequest& request,
 // run estimate, and the limit a SubmitJob would exceed. Throws ServiceError(RESOURCE_EXHAUSTED) beyond the cost limits.
 pfem::v1::ValidateModelResponse check_validate_request(const pfem::v1::Model& model,
                                                        const Limits& limits);
+
+// The engine's spec of a request functional (kind, time and window as given).
+FunctionalSpec functional_spec(const pfem::v1::Functional& f);
 
 // Every problem with Evaluate's functionals against the model's recorders
 // ("functionals[1].recorder: no recorder 'x' in the model").

@@ -6,7 +6,9 @@
 #include <sstream>
 
 #include "clients/cli/client.h"
+#include "clients/reliability/json_writer.h"
 #include "clients/reliability/parallel.h"
+#include "clients/reliability/report.h"
 #include "engine/analysis/run.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
@@ -177,6 +179,8 @@ class RemoteEvaluator final : public ModelEvaluator {
       f->set_recorder(spec.recorder);
       f->set_kind(to_wire(spec.kind));
       f->set_time(spec.time);
+      if (spec.window_start) f->set_window_start(*spec.window_start);
+      if (spec.window_end) f->set_window_end(*spec.window_end);
     }
     if (gradient) {
       request.set_sensitivity(pfem::v1::SENSITIVITY_METHOD_DDM);
@@ -265,6 +269,15 @@ std::string_view to_string(GradientMethod method) {
 std::optional<FunctionalKind> parse_functional_name(std::string_view name) {
   if (name == "at_time") return FunctionalKind::kValueAt;
   return parse_functional_kind(name);
+}
+
+std::string functional_text(const FunctionalSpec& spec) {
+  const auto number = [](double v) { return JsonWriter::number(v); };
+  std::string text = (spec.kind == FunctionalKind::kValueAt ? std::string("at_time")
+                                                            : functional_kind_name(spec.kind)) +
+                     "(" + spec.recorder;
+  if (spec.kind == FunctionalKind::kValueAt) text += ", t = " + number(spec.time);
+  return text + time_window_text(spec.window_start, spec.window_end) + ")";
 }
 
 std::string ModelEvaluator::gradient_source() const {

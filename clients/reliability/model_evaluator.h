@@ -31,6 +31,9 @@ std::string_view to_string(GradientMethod method);
 
 // "at_time" (also "value_at", "at"), "max", "min", "max_abs", "final"; nullopt otherwise.
 std::optional<FunctionalKind> parse_functional_name(std::string_view name);
+// How reports show a functional: "max(tip_ux)", "at_time(tip_ux, t = 0.3)",
+// "max_abs(tip_ux, 2 <= t <= 6)".
+std::string functional_text(const FunctionalSpec& spec);
 
 struct EvaluatorOptions {
   std::string server;           // gRPC target of pfem-server(s); empty: run in-process

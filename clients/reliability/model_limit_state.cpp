@@ -74,6 +74,13 @@ double ModelLimitState::evaluate(std::span<const double> x, std::span<double> gr
   return threshold_ - f.value;
 }
 
+FunctionalSpec limit_state_functional(const pfem::v1::ModelLimitState& m) {
+  FunctionalSpec spec{m.recorder(), *parse_functional_name(m.functional()), m.time()};
+  if (m.has_window_start()) spec.window_start = m.window_start();
+  if (m.has_window_end()) spec.window_end = m.window_end();
+  return spec;
+}
+
 std::vector<FieldError> validate_model_limit_state(const Problem& problem) {
   std::vector<FieldError> errors;
   if (problem.limit_state_kind != LimitStateKind::kModel) return errors;
@@ -89,6 +96,11 @@ std::vector<FieldError> validate_model_limit_state(const Problem& problem) {
                                               "' (the model's recorders: " + list(recorders) + ")"});
   }
   if (!std::isfinite(m.threshold())) errors.push_back({path + ".threshold", "must be finite"});
+  if (parse_functional_name(m.functional())) {
+    if (auto bad = check_functional_window(limit_state_functional(m))) {
+      errors.push_back({path + "." + bad->first, bad->second});
+    }
+  }
   variable_parameters(problem, errors);
   return errors;
 }
@@ -103,10 +115,7 @@ std::unique_ptr<LimitState> make_limit_state(const Problem& problem, const Evalu
   const auto& m = problem.message.limit_state().model();
   std::vector<FieldError> unused;
   std::vector<std::string> params = variable_parameters(problem, unused);
-  FunctionalSpec spec;
-  spec.recorder = m.recorder();
-  spec.kind = *parse_functional_name(m.functional());
-  spec.time = m.time();
+  FunctionalSpec spec = limit_state_functional(m);
   std::shared_ptr<const ModelEvaluator> evaluator;
   try {
     evaluator = make_evaluator(m.model(), options, "limit_state.model.model");

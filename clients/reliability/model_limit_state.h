@@ -39,9 +39,13 @@ class ModelLimitState final : public LimitState {
   std::vector<std::string> parameters_;
 };
 
+// The functional of a model limit state (its name must parse: problem_io checked it).
+FunctionalSpec limit_state_functional(const pfem::v1::ModelLimitState& m);
+
 // Every problem of a problem's model limit state that needs the model to see: the model's own
-// errors (paths "limit_state.model.model.<field>"), an unknown recorder, variables that name
-// no model parameter (or two variables on one parameter). Empty for expression limit states.
+// errors (paths "limit_state.model.model.<field>"), an unknown recorder, a bad time window,
+// variables that name no model parameter (or two variables on one parameter). Empty for
+// expression limit states.
 std::vector<FieldError> validate_model_limit_state(const Problem& problem);
 
 // The limit state of a built problem: an ExpressionLimitState, or a ModelLimitState evaluated

@@ -54,7 +54,8 @@ void check_quantity(const pfem::v1::DesignQuantity& m, const std::string& path,
                     bool model_ok, std::vector<FieldError>& errors, Quantity* q,
                     std::vector<FunctionalSpec>* functionals) {
   const bool has_expression = m.expression().find_first_not_of(" \t\r\n") != std::string::npos;
-  const bool has_functional = !m.recorder().empty() || !m.functional().empty() || m.has_time();
+  const bool has_functional = !m.recorder().empty() || !m.functional().empty() || m.has_time() ||
+                              m.has_window_start() || m.has_window_end();
   if (has_expression && has_functional) {
     errors.push_back({path, "give either expression or recorder with functional, not both"});
     return;
@@ -96,13 +97,19 @@ void check_quantity(const pfem::v1::DesignQuantity& m, const std::string& path,
   } else if (m.has_time() && !(std::isfinite(m.time()) && m.time() >= 0)) {
     errors.push_back({path + ".time", "must be >= 0"});
   }
+  FunctionalSpec spec;
+  if (kind) {
+    spec = FunctionalSpec{m.recorder(), *kind, m.time()};
+    if (m.has_window_start()) spec.window_start = m.window_start();
+    if (m.has_window_end()) spec.window_end = m.window_end();
+    if (auto bad = check_functional_window(spec)) errors.push_back({path + "." + bad->first, bad->second});
+  }
   if (errors.size() != before || !q) return;
-  FunctionalSpec spec{m.recorder(), *kind, m.time()};
-  q->text = m.functional() + "(" + m.recorder() +
-            (*kind == FunctionalKind::kValueAt ? ", t = " + rel::JsonWriter::number(m.time()) : "") + ")";
+  q->text = rel::functional_text(spec);
   for (std::size_t i = 0; i < functionals->size(); ++i) {
     const auto& f = (*functionals)[i];
-    if (f.recorder == spec.recorder && f.kind == spec.kind && f.time == spec.time) {
+    if (f.recorder == spec.recorder && f.kind == spec.kind && f.time == spec.time &&
+        f.window_start == spec.window_start && f.window_end == spec.window_end) {
       q->functional = static_cast<int>(i);
       return;
     }

@@ -30,12 +30,27 @@ void sampling(JsonWriter& w, const std::string& k, const SamplingResult& s, std:
   w.end_object();
 }
 
+}  // namespace
+
+std::string time_window_text(std::optional<double> start, std::optional<double> end) {
+  if (!start && !end) return "";
+  std::string text = ", ";
+  if (start) text += JsonWriter::number(*start) + " <= ";
+  text += "t";
+  if (end) text += " <= " + JsonWriter::number(*end);
+  return text;
+}
+
+namespace {
+
 std::string limit_state_text(const Problem& problem) {
   if (problem.limit_state_kind != LimitStateKind::kModel) return "expression limit state";
   const auto& m = problem.message.limit_state().model();
   std::string text = "model limit state g = " + JsonWriter::number(m.threshold()) + " - " +
                      m.functional() + "(" + m.recorder();
   if (m.functional() == "at_time") text += ", t = " + JsonWriter::number(m.time());
+  text += time_window_text(m.has_window_start() ? std::optional(m.window_start()) : std::nullopt,
+                           m.has_window_end() ? std::optional(m.window_end()) : std::nullopt);
   return text + ")";
 }
 

@@ -15,12 +15,16 @@
 //   importance_sampling / monte_carlo (on request): {samples, failures, pf, cov, beta, seed}
 //   simulations (model limit states): {evaluations, gradient_evaluations, runs (PFEM runs; FDM:
 //                   2P+1 per gradient), cached (answered from the server's cache), seconds}
+#include <optional>
 #include <string>
 
 #include "clients/reliability/analysis.h"
 #include "clients/reliability/problem_io.h"
 
 namespace pfem::reliability {
+
+// ", 2 <= t <= 6", ", 2 <= t", ", t <= 6" or "" for a functional's time window.
+std::string time_window_text(std::optional<double> start, std::optional<double> end);
 
 std::string result_json(const Problem& problem, const AnalysisResult& result,
                         const AnalysisOptions& options);

@@ -30,6 +30,7 @@ std::size_t sensitivity_row(const Histories& responses, const Histories& sensiti
 FunctionalValue evaluate_functional(const Histories& responses, const Histories& sensitivities,
                                     std::span<const std::string> params,
                                     const FunctionalSpec& spec) {
+  if (auto bad = check_functional_window(spec)) throw FunctionalError(bad->first, bad->second);
   const int col = column_index(responses, spec.recorder);
   if (col < 0) throw FunctionalError("recorder", "no recorder '" + spec.recorder + "'");
   const std::size_t n = responses.time.size();
@@ -63,15 +64,27 @@ FunctionalValue evaluate_functional(const Histories& responses, const Histories&
     case FunctionalKind::kMax:
     case FunctionalKind::kMin:
     case FunctionalKind::kMaxAbs: {
-      std::size_t best = 0;
+      const double tol = 1e-9 * std::max(1.0, std::abs(responses.time.back()));
+      const auto in_window = [&](std::size_t row) {
+        const double t = responses.time[row];
+        return (!spec.window_start || t >= *spec.window_start - tol) &&
+               (!spec.window_end || t <= *spec.window_end + tol);
+      };
+      std::size_t best = n;
       const auto key = [&](std::size_t row) {
         const double v = value(row);
         return spec.kind == FunctionalKind::kMax   ? v
                : spec.kind == FunctionalKind::kMin ? -v
                                                    : std::abs(v);
       };
-      for (std::size_t i = 1; i < n; ++i) {
-        if (key(i) > key(best)) best = i;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (in_window(i) && (best == n || key(i) > key(best))) best = i;
+      }
+      if (best == n) {
+        throw FunctionalError(spec.window_start ? "window_start" : "window_end",
+                              "no recorded sample in the window (recorded times [" +
+                                  std::to_string(responses.time.front()) + ", " +
+                                  std::to_string(responses.time.back()) + "])");
       }
       const double v = value(best);
       const double sign = (spec.kind == FunctionalKind::kMaxAbs && v < 0.0) ? -1.0 : 1.0;
@@ -111,6 +124,22 @@ FunctionalValue evaluate_functional(const Histories& responses, const Histories&
     }
   }
   throw FunctionalError("kind", "unknown functional kind");
+}
+
+std::optional<std::pair<std::string, std::string>> check_functional_window(
+    const FunctionalSpec& spec) {
+  const bool extreme = spec.kind == FunctionalKind::kMax || spec.kind == FunctionalKind::kMin ||
+                       spec.kind == FunctionalKind::kMaxAbs;
+  for (const auto& [field, bound] : {std::pair{"window_start", spec.window_start},
+                                     std::pair{"window_end", spec.window_end}}) {
+    if (!bound) continue;
+    if (!extreme) return std::pair{field, std::string("only used with max, min and max_abs")};
+    if (!std::isfinite(*bound)) return std::pair{field, std::string("must be finite")};
+  }
+  if (spec.window_start && spec.window_end && *spec.window_end < *spec.window_start) {
+    return std::pair{std::string("window_end"), std::string("must be >= window_start")};
+  }
+  return std::nullopt;
 }
 
 std::optional<FunctionalKind> parse_functional_kind(std::string_view name) {

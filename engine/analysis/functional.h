@@ -9,12 +9,15 @@
 //   kMin      min r      gradient: the sensitivities at the arg-min sample
 //   kMaxAbs   max |r|    gradient: sign(r) times the sensitivities at the arg-max sample
 // (max/min are not differentiable where the extreme switches samples; the value at the
-// arg-max time is the derivative that holds almost everywhere.)
+// arg-max time is the derivative that holds almost everywhere.) max, min and max_abs may be
+// limited to the samples in a time window [window_start, window_end], e.g. to leave out a
+// start-up transient and take the largest response to the steady waves that follow.
 #include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "engine/analysis/run.h"
@@ -24,9 +27,14 @@ namespace pfem {
 enum class FunctionalKind { kValueAt, kMax, kMin, kMaxAbs, kFinal };
 
 struct FunctionalSpec {
+  FunctionalSpec() = default;
+  FunctionalSpec(std::string recorder_name, FunctionalKind functional_kind, double at_time = 0.0)
+      : recorder(std::move(recorder_name)), kind(functional_kind), time(at_time) {}
   std::string recorder;  // a response column (recorder name)
   FunctionalKind kind = FunctionalKind::kFinal;
   double time = 0.0;     // for kValueAt [s]
+  std::optional<double> window_start;  // kMax/kMin/kMaxAbs: only samples at t >= this [s]
+  std::optional<double> window_end;    // kMax/kMin/kMaxAbs: only samples at t <= this [s]
 };
 
 struct FunctionalValue {
@@ -52,6 +60,11 @@ class FunctionalError : public std::invalid_argument {
 FunctionalValue evaluate_functional(const Histories& responses, const Histories& sensitivities,
                                     std::span<const std::string> params,
                                     const FunctionalSpec& spec);
+
+// Checks the window of a spec (finite, start <= end, only with max, min and max_abs); empty
+// when it is fine, otherwise {"window_start" or "window_end", reason}.
+std::optional<std::pair<std::string, std::string>> check_functional_window(
+    const FunctionalSpec& spec);
 
 // "at" / "value_at", "max", "min", "max_abs" / "absmax", "final"; nullopt otherwise.
 std::optional<FunctionalKind> parse_functional_kind(std::string_view name);

@@ -138,11 +138,20 @@ TEST_F(ServiceErrors, AllErrorsOfARequestComeTogether) {
   at->set_kind(pfem::v1::Functional::KIND_VALUE_AT);
   at->set_time(NAN);
   eval.add_functionals()->set_recorder("bottom_p");
+  auto* window = eval.add_functionals();
+  window->set_recorder("bottom_p");
+  window->set_kind(pfem::v1::Functional::KIND_MAX);
+  window->set_window_start(0.2);
+  window->set_window_end(0.1);
+  *eval.add_functionals() = final_of("bottom_p");
+  eval.mutable_functionals(4)->set_window_start(0.1);
   const auto status2 = evaluate(eval);
   EXPECT_EQ(status2.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_TRUE(mentions(status2, "functionals[0].recorder: no recorder 'tip' in the model"));
   EXPECT_TRUE(mentions(status2, "functionals[1].time: must be finite"));
   EXPECT_TRUE(mentions(status2, "functionals[2].kind"));
+  EXPECT_TRUE(mentions(status2, "functionals[3].window_end: must be >= window_start"));
+  EXPECT_TRUE(mentions(status2, "functionals[4].window_start: only used with max, min and max_abs"));
   pfem::v1::EvaluateRequest nothing;
   EXPECT_TRUE(mentions(evaluate(nothing), "model: required"));
 

@@ -1,6 +1,8 @@
 // Functionals of recorder histories and their gradients (engine/analysis/functional.h).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "engine/analysis/functional.h"
 
 namespace {
@@ -58,6 +60,50 @@ TEST(Functional, ValueAtInterpolatesLinearlyAndHitsSamplesExactly) {
   EXPECT_NEAR(v.gradient[1], 20.25, 1e-12);
   v = f.eval("tip", FunctionalKind::kValueAt, 0.3 + 1e-12);  // within tolerance of the end
   EXPECT_EQ(v.value, 1.0);
+}
+
+TEST(Functional, AWindowLeavesOutTheSamplesOutsideIt) {
+  Fixture f;
+  FunctionalSpec spec{"tip", FunctionalKind::kMax, 0.0};
+  spec.window_start = 0.15;  // leaves out the largest tip (2 at 0.1)
+  auto v = pfem::evaluate_functional(f.responses, f.sensitivities, f.params, spec);
+  EXPECT_EQ(v.value, 1.0);
+  EXPECT_EQ(v.time, 0.3);
+  EXPECT_EQ(v.gradient, (std::vector<double>{12, 22}));
+  spec.kind = FunctionalKind::kMaxAbs;  // |-3| at 0.2 is inside
+  v = pfem::evaluate_functional(f.responses, f.sensitivities, f.params, spec);
+  EXPECT_EQ(v.value, 3.0);
+  EXPECT_EQ(v.gradient, (std::vector<double>{-11, -21}));
+  spec.kind = FunctionalKind::kMin;
+  spec.window_start = 0.0;
+  spec.window_end = 0.1 + 1e-13;  // the end sample counts within the time tolerance
+  v = pfem::evaluate_functional(f.responses, f.sensitivities, f.params, spec);
+  EXPECT_EQ(v.value, 0.0);
+  EXPECT_EQ(v.time, 0.0);
+}
+
+TEST(Functional, ABadWindowNamesItsField) {
+  Fixture f;
+  const auto field_of = [&](FunctionalSpec spec) {
+    try {
+      pfem::evaluate_functional(f.responses, f.sensitivities, f.params, spec);
+    } catch (const pfem::FunctionalError& e) {
+      return e.field() + ": " + e.what();
+    }
+    return std::string("no error");
+  };
+  FunctionalSpec spec{"tip", FunctionalKind::kMax, 0.0};
+  spec.window_start = 0.22;
+  spec.window_end = 0.28;  // no sample between 0.2 and 0.3
+  EXPECT_EQ(field_of(spec).rfind("window_start: no recorded sample", 0), 0u) << field_of(spec);
+  spec.window_end = 0.1;
+  EXPECT_EQ(field_of(spec), "window_end: must be >= window_start");
+  spec.window_end = std::nullopt;
+  spec.kind = FunctionalKind::kFinal;
+  EXPECT_EQ(field_of(spec), "window_start: only used with max, min and max_abs");
+  spec.kind = FunctionalKind::kMax;
+  spec.window_start = std::nan("");
+  EXPECT_EQ(field_of(spec), "window_start: must be finite");
 }
 
 TEST(Functional, WithoutParametersThereIsNoGradient) {
