@@ -34,6 +34,15 @@ std::optional<FunctionalKind> parse_functional_name(std::string_view name);
 // How reports show a functional: "max(tip_ux)", "at_time(tip_ux, t = 0.3)",
 // "max_abs(tip_ux, 2 <= t <= 6)".
 std::string functional_text(const FunctionalSpec& spec);
+// The spec of a problem file's functional (pfem.v1 ModelLimitState or DesignQuantity: recorder,
+// time and the optional window_start/window_end) of the given kind.
+template <class Message>
+FunctionalSpec functional_spec_of(const Message& m, FunctionalKind kind) {
+  FunctionalSpec spec{m.recorder(), kind, m.time()};
+  if (m.has_window_start()) spec.window_start = m.window_start();
+  if (m.has_window_end()) spec.window_end = m.window_end();
+  return spec;
+}
 
 struct EvaluatorOptions {
   std::string server;           // gRPC target of pfem-server(s); empty: run in-process

@@ -75,10 +75,7 @@ double ModelLimitState::evaluate(std::span<const double> x, std::span<double> gr
 }
 
 FunctionalSpec limit_state_functional(const pfem::v1::ModelLimitState& m) {
-  FunctionalSpec spec{m.recorder(), *parse_functional_name(m.functional()), m.time()};
-  if (m.has_window_start()) spec.window_start = m.window_start();
-  if (m.has_window_end()) spec.window_end = m.window_end();
-  return spec;
+  return functional_spec_of(m, *parse_functional_name(m.functional()));
 }
 
 std::vector<FieldError> validate_model_limit_state(const Problem& problem) {

@@ -99,9 +99,7 @@ void check_quantity(const pfem::v1::DesignQuantity& m, const std::string& path,
   }
   FunctionalSpec spec;
   if (kind) {
-    spec = FunctionalSpec{m.recorder(), *kind, m.time()};
-    if (m.has_window_start()) spec.window_start = m.window_start();
-    if (m.has_window_end()) spec.window_end = m.window_end();
+    spec = rel::functional_spec_of(m, *kind);
     if (auto bad = check_functional_window(spec)) errors.push_back({path + "." + bad->first, bad->second});
   }
   if (errors.size() != before || !q) return;
