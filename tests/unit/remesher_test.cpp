@@ -652,6 +652,50 @@ TEST(Remesher, WallConstraintKeepsTheTwoSidesApart) {
 
 // A horizontal beam (a line of Structure nodes at y = 0, elements as constraints) with a
 // block of fluid below it, and two particles that have crossed it (just above it).
+// A particle taken out beside a beam inside the water leaves a void whose triangles fail the
+// alpha test. When the water was wet all round it at the previous step (no node of the void on
+// that mesh's boundary), air cannot be there: the void is water, and the beam's side stays wet.
+// Its ring flagged as a surface (an air pocket), no previous mesh, or a void away from any beam
+// leave it out.
+TEST(Remesher, AVoidAgainstABeamInWaterWetAllRoundAtThePreviousStepIsWater) {
+  const double h = 1.0, alpha = 0.9;  // the grid's triangles: R = 0.707; the void's: R >= 1
+  const int nx = 7, ny = 7;
+  // A beam up the middle (structure nodes at x = 3, constraints between them), water both sides.
+  Nodes n;
+  std::vector<Segment> beam;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) n.add(i * h, j * h, i == 3 ? NodeKind::Structure : NodeKind::Fluid);
+    if (j > 0) beam.push_back({(j - 1) * nx + 3, j * nx + 3});
+  }
+  RemeshOptions options{h, alpha};
+  options.constraints = beam;
+  const FluidMesh previous = pfem::mesh::remesh(n.x, n.y, n.kind, options);
+  ASSERT_NEAR(total_area(n, previous), 36.0, 1e-12);
+  const auto area = [&](const RemeshOptions& o) { return total_area(n, pfem::mesh::remesh(n.x, n.y, n.kind, o)); };
+  n.kind[3 * nx + 4] = NodeKind::Removed;  // beside the beam's node (3, 3)
+  EXPECT_LT(area(options), 36.0 - 0.5);    // no previous mesh: a void
+  options.previous_triangles = previous.triangles;
+  options.previous_boundary = previous.free_surface;
+  const FluidMesh filled = pfem::mesh::remesh(n.x, n.y, n.kind, options);
+  EXPECT_NEAR(total_area(n, filled), 36.0, 1e-12);
+  EXPECT_EQ(filled.free_surface[3 * nx + 3], 0);  // the beam's node beside the void stays wet
+  for (const auto& [a, b] : beam) EXPECT_EQ(edge_uses(filled, a, b), 2) << a << "-" << b;
+  expect_consistent(n, filled, h, std::sqrt(2.0) + 1e-9, beam);
+  // Its ring flagged as a surface (an air pocket the water closed over): it stays air.
+  std::vector<std::uint8_t> pocket = previous.free_surface;
+  for (const int k : {2 * nx + 4, 2 * nx + 5, 3 * nx + 5, 4 * nx + 4, 4 * nx + 5}) pocket[k] = 1;
+  options.previous_boundary = pocket;
+  EXPECT_LT(area(options), 36.0 - 0.5);
+  // The same particle gone in open water (no beam): left to the flow.
+  Nodes open = fluid_grid(nx, ny, h);
+  RemeshOptions plain{h, alpha};
+  const FluidMesh wet = open.remesh(h, alpha);
+  plain.previous_triangles = wet.triangles;
+  plain.previous_boundary = wet.free_surface;
+  open.kind[3 * nx + 4] = NodeKind::Removed;
+  EXPECT_LT(total_area(open, pfem::mesh::remesh(open.x, open.y, open.kind, plain)), 36.0 - 0.5);
+}
+
 TEST(Remesher, BeamConstraintLeavesItsFarSideEmpty) {
   const double h = 0.1, alpha = 1.3;
   const int elements = 12;
