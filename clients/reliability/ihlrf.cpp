@@ -13,6 +13,10 @@
 
 namespace pfem::reliability::detail {
 
+namespace {
+constexpr double kShortestProgress = 1.0 / 1024.0;  // of the HL-RF step
+}  // namespace
+
 bool design_point_converged(const Eigen::VectorXd& u, double g, const Eigen::VectorXd& gradient,
                             double g_scale, double tol_g, double tol_alignment) {
   const double gn = gradient.norm();
@@ -81,6 +85,10 @@ SearchOutcome search_ihlrf(StandardSpaceFunction& G, const Eigen::VectorXd& u0,
         break;
       }
     }
+    // A step accepted only below 1/1024 of the HL-RF step is no progress either: the
+    // linearisation held over no more than that, g is piecewise smooth on a finer scale than the
+    // search's (a PFEM response between remeshing decisions), and such steps crept on.
+    if (accepted && step < kShortestProgress) accepted = false;
     if (!accepted) {
       if (!std::isfinite(g_new)) {
         out.message = "g is not finite along the search direction at iteration " + std::to_string(k);
@@ -90,7 +98,8 @@ SearchOutcome search_ihlrf(StandardSpaceFunction& G, const Eigen::VectorXd& u0,
       // every step tried (a PFEM response jumps where a remeshing decision changes), so the
       // point cannot be refined; stop rather than creep with ever smaller steps.
       if (stalled) {
-        out.message = "the line search found no decrease of the merit function at iterations " +
+        out.message = "the line search found no decrease of the merit function (none beyond 1/1024 of the "
+                      "HL-RF step) at iterations " +
                       std::to_string(k - 1) + " and " + std::to_string(k) +
                       " (g is not smooth at this scale); the tolerance is tighter than g allows";
         return out;

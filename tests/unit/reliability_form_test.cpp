@@ -467,8 +467,43 @@ TEST(ReliabilityForm, IhlrfStopsWhenTheLineSearchFindsNoDecreaseTwice) {
   options.start_u = {0.5, 0.5};
   const rel::FormResult r = rel::run_form(g, t, options);
   EXPECT_FALSE(r.converged);
-  EXPECT_NE(r.message.find("no decrease of the merit function at iterations 0 and 1"), std::string::npos)
+  EXPECT_NE(r.message.find("HL-RF step) at iterations 0 and 1"), std::string::npos)
       << r.message;
   EXPECT_EQ(r.iterations, 1);
   EXPECT_EQ(r.evaluations, 1 + 2 * options.max_line_search_steps);
+}
+
+// A limit state that is smooth only on thin stripes, as a PFEM response is between remeshing
+// decisions: g = 3 - u1 + s u2 with the slope s = 0.2 or 0.4 on alternate stripes of u1 1.9e-5
+// wide, its gradient exact on each stripe. The design point of either slope lies on a stripe of
+// the other (u1 = 3 / (1 + s^2): 2.8846 on an odd stripe, 2.5862 on an even one). iHL-RF
+// closes in on the design point of s = 0.4 (beta = 3 / sqrt(1.16)) until a step passes the line
+// search only while it stays on its stripe, and then crept on in steps of ~1e-5 (50 iterations
+// and 335 evaluations to max_iterations). A step below 1/1024 of the HL-RF step counts as no
+// decrease, and two in a row stop the search (29 iterations, 132 evaluations).
+class StripedLimitState final : public rel::LimitState {
+ public:
+  std::size_t num_variables() const override { return 2; }
+  double evaluate(std::span<const double> x, std::span<double> gradient) const override {
+    const double s = static_cast<long long>(std::floor(x[0] / 1.9e-5)) % 2 == 0 ? 0.2 : 0.4;
+    if (!gradient.empty()) gradient[0] = -1.0, gradient[1] = s;
+    return 3.0 - x[0] + s * x[1];
+  }
+  bool provides_gradient() const override { return true; }
+  std::string gradient_source() const override { return "exact on each stripe"; }
+};
+
+TEST(ReliabilityForm, IhlrfStopsWhenOnlyTinyStepsPassTheLineSearch) {
+  const StripedLimitState g;
+  const rel::NatafTransform t({Distribution::normal(0.0, 1.0), Distribution::normal(0.0, 1.0)},
+                              Eigen::MatrixXd::Identity(2, 2));
+  rel::FormOptions options;
+  options.max_iterations = 50;
+  const rel::FormResult r = rel::run_form(g, t, options);
+  std::printf("%s: %d iterations, %d evaluations, beta %.5f\n", r.message.c_str(), r.iterations, r.evaluations, r.beta);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.message.find("none beyond 1/1024 of the HL-RF step"), std::string::npos) << r.message;
+  EXPECT_LT(r.iterations, options.max_iterations);
+  EXPECT_LT(r.evaluations, 150);
+  EXPECT_NEAR(r.beta, 3.0 / std::sqrt(1.16), 1e-4);  // where it stopped: at that design point
 }
