@@ -386,11 +386,11 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
   // nodes were all in the previous mesh and none on its boundary. Air cannot get there within a
   // step: it is the alpha test's reading of the particles drawn apart in the wake of the beam's
   // edge, or of one taken out beside it. Left out, it is a free surface for a step along the
-  // beam's wet side, where the water's pressure then drops to zero: a submerged plate in a wave
-  // flume took single-step kicks of 13 N on its 2 N wave force. An air pocket that the water
-  // closes over keeps its surface particles' flags and stays air. (Voids in open water or at a
-  // fixed wall are left to the flow: where water drains in a film thinner than h, they are the
-  // film's real breaking up, and filling them made water.)
+  // beam's wet side, where the water's pressure then drops to zero: the force on a submerged
+  // plate in a wave flume jumped by up to 13 N in a step on its 2-4 N wave force. An air pocket
+  // that the water closes over keeps its surface particles' flags and stays air. (Voids in open
+  // water or at a fixed wall are left to the flow: where water drains in a film thinner than h,
+  // they are the film's real breaking up, and filling them made water.)
   if (!options.previous_boundary.empty() && !options.previous_triangles.empty()) {
     std::vector<std::uint8_t> was_wet(n, 0);
     for (const auto& t : options.previous_triangles)
