@@ -344,37 +344,47 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
       if (kind[f->vertex(k)->info()] == NodeKind::Fluid) return false;
     return true;
   };
+  // Collects into group the connected dropped faces from f that enter() accepts, across edges
+  // that are not walls or beams, marking them visited; face(g) sees each, edge(g, k) each edge
+  // of theirs that the walk does not cross (a constraint, the infinite face, a kept face, a face
+  // enter() refused, or one of the group's own).
   std::vector<Delaunay::Face_handle> group, stack;
-  for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
-    if (f->info() != 0 || !no_particle(f)) continue;
+  const auto flood = [&](Delaunay::Face_handle f, const auto& enter, const auto& face, const auto& edge) {
     group.clear();
     stack.assign(1, f);
     f->info() = kVisited;
-    bool closed = true, wet = false, walled = false;
     while (!stack.empty()) {
       const auto g = stack.back();
       stack.pop_back();
       group.push_back(g);
-      closed = closed && passes_alpha_test(g->vertex(0)->point(), g->vertex(1)->point(),
-                                           g->vertex(2)->point(), max_radius);
+      face(g);
       for (int k = 0; k < 3; ++k) {
-        if (g->is_constrained(k)) {
-          walled = true;
-          continue;
-        }
         const auto across = g->neighbor(k);
-        if (tri.is_infinite(across)) {
-          closed = false;
-        } else if (across->info() == kKept) {
-          wet = true;
-        } else if (across->info() == 0 && no_particle(across)) {
+        if (!g->is_constrained(k) && !tri.is_infinite(across) && across->info() == 0 && enter(across)) {
           across->info() = kVisited;
           stack.push_back(across);
-        } else if (across->info() == 0) {
-          closed = false;  // a triangle with a particle that the alpha test dropped: open to the air
+        } else {
+          edge(g, k);
         }
       }
     }
+  };
+  for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
+    if (f->info() != 0 || !no_particle(f)) continue;
+    bool closed = true, wet = false, walled = false;
+    flood(
+        f, no_particle,
+        [&](Delaunay::Face_handle g) {
+          closed = closed && passes_alpha_test(g->vertex(0)->point(), g->vertex(1)->point(),
+                                               g->vertex(2)->point(), max_radius);
+        },
+        [&](Delaunay::Face_handle g, int k) {
+          const auto across = g->neighbor(k);
+          if (g->is_constrained(k)) walled = true;
+          else if (tri.is_infinite(across)) closed = false;
+          else if (across->info() == kKept) wet = true;
+          else if (across->info() == 0) closed = false;  // a dropped triangle with a particle: open to the air
+        });
     for (auto g : group) g->info() = closed && wet && walled ? kPocket : kVisited;
   }
   for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f)
@@ -396,36 +406,26 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
     for (const auto& t : options.previous_triangles)
       for (const std::int32_t i : t)
         if (static_cast<std::size_t>(i) < n) was_wet[i] = 1;
+    const auto any = [](Delaunay::Face_handle) { return true; };
     for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f) {
       if (f->info() != 0) continue;
-      group.clear();
-      stack.assign(1, f);
-      f->info() = kVisited;
       bool enclosed = true, particle = false, beam = false;
-      while (!stack.empty()) {
-        const auto g = stack.back();
-        stack.pop_back();
-        group.push_back(g);
-        for (int k = 0; k < 3; ++k) {
-          const std::int32_t i = g->vertex(k)->info();
-          enclosed = enclosed && was_wet[i] && !was_boundary(i);
-          particle = particle || kind[i] == NodeKind::Fluid;
-          beam = beam || kind[i] == NodeKind::Structure;
-        }
-        // A face flat in double precision (collinear nodes) cannot be an element.
-        enclosed = enclosed && passes_alpha_test(g->vertex(0)->point(), g->vertex(1)->point(),
-                                                 g->vertex(2)->point(), std::numeric_limits<double>::infinity());
-        for (int k = 0; k < 3; ++k) {
-          if (g->is_constrained(k)) continue;
-          const auto across = g->neighbor(k);
-          if (tri.is_infinite(across)) {
-            enclosed = false;
-          } else if (across->info() == 0) {
-            across->info() = kVisited;
-            stack.push_back(across);
-          }
-        }
-      }
+      flood(
+          f, any,
+          [&](Delaunay::Face_handle g) {
+            for (int k = 0; k < 3; ++k) {
+              const std::int32_t i = g->vertex(k)->info();
+              enclosed = enclosed && was_wet[i] && !was_boundary(i);
+              particle = particle || kind[i] == NodeKind::Fluid;
+              beam = beam || kind[i] == NodeKind::Structure;
+            }
+            // A face flat in double precision (collinear nodes) cannot be an element.
+            enclosed = enclosed && passes_alpha_test(g->vertex(0)->point(), g->vertex(1)->point(),
+                                                     g->vertex(2)->point(), std::numeric_limits<double>::infinity());
+          },
+          [&](Delaunay::Face_handle g, int k) {
+            if (!g->is_constrained(k) && tri.is_infinite(g->neighbor(k))) enclosed = false;
+          });
       for (auto g : group) g->info() = enclosed && particle && beam ? kPocket : kVisited;
     }
     for (auto f = tri.finite_faces_begin(); f != tri.finite_faces_end(); ++f)

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <string>
 #include <utility>
 #include <vector>
@@ -144,8 +145,8 @@ void expect_flume_ddm(const std::string& file, double t_end, const std::vector<s
 }
 
 // examples/wave-flume-wall.json to 2.5 s (the first waves reach its flexible wall): the wall's
-// tip, the gauge before it and the water's force on it, with respect to the stroke (FDM step 1e-7) and the period (1e-8: at 1e-7 the period's perturbed runs remesh
-// apart at 0.95 s).
+// tip, the gauge before it and the water's force on it, with respect to the stroke (FDM step
+// 1e-7) and the period (1e-8: at 1e-7 the period's perturbed runs remesh apart at 0.95 s).
 TEST(Wavemaker, DdmOfTheFlumesWallAndGaugeMatchesCentralFdm) {
   expect_flume_ddm("wave-flume-wall.json", 2.5, {"tip_ux", "eta_1.2", "plate_fx"}, {{"S", 1e-7}, {"T", 1e-8}});
 }
