@@ -32,6 +32,10 @@ std::optional<TargetRef> parse_parameter_target(const std::string& target);
 // Whether the target has a known form (its component name is not resolved).
 bool is_parameter_target(const std::string& target);
 
+// Whether analysis.formulation is "incompressible" (div v = 0, no bulk modulus; the default is
+// "quasi-incompressible").
+bool is_incompressible(const pfem::v1::Model& model);
+
 // "<beam>/<k>" -> {"<beam>", k} for a k written as a plain positive integer; nullopt otherwise.
 // Names generated for a beam's interior nodes and its elements (see model.proto, Beam).
 std::optional<std::pair<std::string, int>> split_generated_name(const std::string& name);

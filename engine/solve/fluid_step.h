@@ -51,6 +51,7 @@
 #include "engine/solve/newton_monitor.h"
 #include "engine/solve/node_state.h"
 #include "engine/solve/step_numbering.h"
+#include "engine/solve/step_solver.h"
 #include "engine/solve/step_structure.h"
 #include "engine/solve/supernodal_ldlt.h"
 #include "engine/solve/wall_guard.h"
@@ -118,7 +119,7 @@ class StepCancelled : public std::runtime_error {
   StepCancelled() : std::runtime_error("cancelled") {}
 };
 
-class UnifiedStep {
+class UnifiedStep : public StepSolver {
  public:
   UnifiedStep() = default;
 
@@ -126,13 +127,13 @@ class UnifiedStep {
   // fall freely; a particle that would cross a wall or beam is removed (kind Removed). Throws
   // StepFailure or StepCancelled (nodes are then left unchanged).
   StepReport advance(const mesh::FluidMesh& mesh, const StepSettings& settings, NodeState& nodes,
-                     const std::atomic<bool>* cancel = nullptr);
+                     const std::atomic<bool>* cancel = nullptr) override;
   // The report of the last call, also when it threw (the work of a failed attempt).
-  const StepReport& last_report() const { return report_; }
+  const StepReport& last_report() const override { return report_; }
   // Saves or restores what one step hands to the next (the bubble velocities and their
   // sensitivities by triangle, the sensitivity solver's choice and its LU's symbolic analysis)
   // for a checkpoint; between steps only.
-  void archive(StateArchive& a);
+  void archive(StateArchive& a) override;
 
  private:
   // Per element, from a condensed factorisation: the bubble block inverse and
