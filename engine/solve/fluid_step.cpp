@@ -459,6 +459,10 @@ void UnifiedStep::correct_condensed_bubble(const mesh::FluidMesh& mesh) {
   p_ += dp.col(0);
 }
 
+bool UnifiedStep::any_inverted() const {
+  return std::any_of(geometries_.begin(), geometries_.end(), [](const fluid::TriangleGeometry& g) { return !(g.A > 0.0); });
+}
+
 void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
   // A particle whose move crosses a wall or beam hits it (advance() takes it out): typically a
   // splash particle reaching the floor or the obstacle's back, in free-surface triangles that
@@ -607,7 +611,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   report_.pressure_unknowns = num_.pressures;
   initial_iterate(mesh, s, nodes);
 
-  NewtonMonitor newton(s.tolerance, s.max_iterations);
+  NewtonMonitor newton(s.tolerance, s.max_iterations, s.give_up_inverted);
   for (;;) {
     if (cancel && cancel->load(std::memory_order_relaxed)) throw StepCancelled();
     auto t0 = Clock::now();
@@ -615,7 +619,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     residuals(mesh);
     s_force_scale_ = structure_.add_residual(v_, rv_);
     report_.assemble_seconds += seconds_since(t0);
-    newton.record(report_.residual = relative_residual(s));
+    newton.record(report_.residual = relative_residual(s), any_inverted());
     const int it = newton.iteration();
     if (!std::isfinite(report_.residual))
       throw StepFailure("Newton produced a non-finite residual at iteration " + std::to_string(it));
@@ -623,7 +627,10 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     if (newton.out_of_iterations() || newton.hopeless()) {
       char msg[128];
       std::snprintf(msg, sizeof msg, "Newton did not converge in %d iterations (relative residual %.3e%s)", it,
-                    report_.residual, newton.hopeless() ? ", not halved in the last iterations" : "");
+                    report_.residual,
+                    newton.inverted_and_stagnating() ? ", a triangle inverted and the residual stagnating"
+                    : newton.hopeless()              ? ", not halved in the last iterations"
+                                                     : "");
       throw StepFailure(msg);
     }
     newton_correction(mesh, s, it == 0, newton.stalled());

@@ -63,6 +63,9 @@ struct StepSettings {
   double dt = 0.0;
   double tolerance = 1e-10;  // relative residual
   int max_iterations = 50;
+  // Whether an inverted, stagnating Newton iterate gives the step up (newton_monitor.h): not on
+  // the last retry a step has.
+  bool give_up_inverted = false;
   fluid::FluidConstants fluid;
   double thickness = 1.0;
   double gx = 0.0, gy = -9.81;
@@ -197,6 +200,8 @@ class UnifiedStep {
   void solve_condensed(const mesh::FluidMesh& mesh, const std::vector<BubbleCondensation>& bubbles,
                        const CondensedSolve& solve, const Eigen::MatrixXd& rv, const Eigen::MatrixXd& rp,
                        Eigen::MatrixXd& dv, Eigen::MatrixXd& dp) const;
+  // Whether a triangle is inverted (or flat) at the current iterate.
+  bool any_inverted() const;
   // A converged state with an inverted triangle is no solution of the PFEM step: throws
   // StepFailure so that the step is retried shorter. A particle whose converged move crosses a
   // wall or beam is marked in hits_wall_ instead (its triangles may invert): it is removed. Sets
