@@ -9,6 +9,7 @@
 #include "engine/io/model_checks.h"
 #include "engine/io/model_io.h"
 #include "engine/io/motion_builder.h"
+#include "engine/io/parameter_targets.h"
 #include "engine/io/structure_builder.h"
 
 namespace pfem {
@@ -259,35 +260,26 @@ void set_parameter(Problem& problem, const ParameterSpec& parameter, double valu
   }
 }
 
-}  // namespace
-
-namespace {
-// Each differentiated parameter's seeded targets, and its seed on the fluid constants: weight 1
-// on its own targets, or w_k on those of every parameter k a directional one weighs.
-void sensitivity_seeds(const pfem::v1::Model& model, const std::vector<std::string>& names, Problem& pb,
-                       std::vector<std::vector<SeedTarget>>& targets) {
+// Each differentiated parameter's seeded targets: weight 1 on its own targets, or w_k on those of
+// every parameter k a directional one weighs.
+std::vector<std::vector<SeedTarget>> seeded_targets(const pfem::v1::Model& model,
+                                                    const std::vector<std::string>& names) {
   const auto find = [&](const std::string& name) -> const pfem::v1::Parameter& {  // checked: it exists
     return *std::find_if(model.parameters().begin(), model.parameters().end(),
                          [&](const auto& q) { return q.name() == name; });
   };
+  std::vector<std::vector<SeedTarget>> targets;
   for (const auto& name : names) {
     const pfem::v1::Parameter& p = find(name);
     std::vector<SeedTarget> seeded;
     for (const auto& t : p.targets()) seeded.push_back({t, 1.0});
     for (const auto& w : p.direction())  // validated: each names a parameter with targets
       for (const auto& t : find(w.parameter()).targets()) seeded.push_back({t, w.weight()});
-    fluid::FluidSeed seed;
-    for (const auto& [t, weight] : seeded) {
-      if (t == "fluid.rho") seed.rho += weight;
-      else if (t == "fluid.mu") seed.mu += weight;
-      else if (t == "fluid.kappa") seed.kappa += weight;
-      else if (t == "thickness") seed.thickness += weight;
-    }
     targets.push_back(std::move(seeded));
-    pb.sensitivity_params.push_back(name);
-    pb.fluid_seeds.push_back(seed);
   }
+  return targets;
 }
+
 }  // namespace
 
 std::vector<FieldError> model_errors(const pfem::v1::Model& model) {
@@ -336,12 +328,13 @@ Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<
   // The model with every parameter's value on its targets (the structure is built from it).
   pfem::v1::Model with_values = model;
   apply_parameter_overrides(with_values);
-  std::vector<std::vector<SeedTarget>> sensitivity_targets;
-  sensitivity_seeds(model, sensitivity_params, pb, sensitivity_targets);
+  const std::vector<ParameterSeed> seeds = parameter_seeds(with_values, seeded_targets(model, sensitivity_params));
+  pb.sensitivity_params = sensitivity_params;
+  for (const auto& seed : seeds) pb.fluid_seeds.push_back(seed.fluid);
   std::vector<std::vector<std::array<std::int32_t, 2>>> wall_pieces;
   std::vector<std::vector<int>> wall_nodes;
   auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments, pb, wall_pieces, wall_nodes);
-  pb.moving_walls = build_wall_motions(with_values, wall_nodes, sensitivity_targets);
+  pb.moving_walls = build_wall_motions(with_values, wall_nodes, seeds);
   pb.moving_node.assign(pb.nodes.size(), 0);
   for (const auto& m : pb.moving_walls)
     for (const int i : m.nodes) pb.moving_node[i] = 1;
@@ -354,7 +347,7 @@ Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<
   }
   std::map<std::string, int> structure_node_by_name, element_by_name;
   if (model.has_structure()) {
-    StructureBuild sb = build_structure(with_values, sensitivity_targets, /*validated=*/true);
+    StructureBuild sb = build_structure(with_values, seeds, /*validated=*/true);
     for (int k = 0; k < sb.model.num_nodes(); ++k) {
       const auto& node = sb.model.node(k);
       pb.structure_nodes.push_back(pb.nodes.add(node.x(0), node.x(1), NodeKind::Structure));
@@ -412,16 +405,12 @@ Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<
     }
     pb.recorders.push_back(spec);
   }
-  // A parameter without a value takes its first target's value after every override, so that it
-  // never undoes another parameter that sets the same target.
-  // A directional parameter sets nothing: its value is 0, its point its parameters'.
-  for (const auto& p : model.parameters()) {
-    ParameterSpec spec{p.name(), {p.targets().begin(), p.targets().end()}, 0.0, {}};
+  const std::vector<double> values = parameter_values(with_values);
+  for (int i = 0; i < model.parameters_size(); ++i) {
+    const auto& p = model.parameters(i);
+    ParameterSpec spec{p.name(), {p.targets().begin(), p.targets().end()}, values[i], {}};
     for (const auto& w : p.direction()) spec.direction.emplace_back(w.parameter(), w.weight());
-    if (!spec.targets.empty()) {
-      spec.value = p.has_value() ? p.value() : model_target_value(with_values, spec.targets.front());
-      set_parameter(pb, spec, spec.value);
-    }
+    set_parameter(pb, spec, spec.value);
     pb.parameters.push_back(spec);
   }
   pb.nodes.set_num_params(static_cast<int>(sensitivity_params.size()));
