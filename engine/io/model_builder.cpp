@@ -249,17 +249,6 @@ int nearest_node(const NodeState& nodes, double x, double y) {
   return best;
 }
 
-// Sets the fluid and thickness targets of a parameter (structure targets are applied to the
-// model before the structure is built).
-void set_parameter(Problem& problem, const ParameterSpec& parameter, double value) {
-  for (const auto& t : parameter.targets) {
-    if (t == "fluid.rho") problem.fluid.rho = value;
-    else if (t == "fluid.mu") problem.fluid.mu = value;
-    else if (t == "fluid.kappa") problem.fluid.kappa = value;
-    else if (t == "thickness") problem.thickness = value;
-  }
-}
-
 // Each differentiated parameter's seeded targets: weight 1 on its own targets, or w_k on those of
 // every parameter k a directional one weighs.
 std::vector<std::vector<SeedTarget>> seeded_targets(const pfem::v1::Model& model,
@@ -299,9 +288,13 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
 }
 
 Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<std::string>& sensitivity_params) {
+  // The model with every parameter's value on its targets: the fluid, the thickness, the walls'
+  // motions and the structure are built from it.
+  pfem::v1::Model with_values = model;
+  apply_parameter_overrides(with_values);
   Problem pb;
-  pb.fluid = {model.fluid().rho(), model.fluid().mu(), model.fluid().kappa()};
-  pb.thickness = model.has_thickness() ? model.thickness() : 1.0;
+  pb.fluid = {with_values.fluid().rho(), with_values.fluid().mu(), with_values.fluid().kappa()};
+  pb.thickness = model_target_value(with_values, "thickness");
   if (model.has_gravity()) pb.gx = model.gravity().x(), pb.gy = model.gravity().y();
   pb.h = model.mesh().h();
   pb.alpha = model.mesh().has_alpha() ? model.mesh().alpha() : 1.2;
@@ -325,9 +318,6 @@ Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<
   pb.domain = {domain.xmin, domain.ymin, domain.xmax, domain.ymax};
   pb.fail_on_exit = model.has_domain() && model.domain().on_exit() == "fail";
 
-  // The model with every parameter's value on its targets (the structure is built from it).
-  pfem::v1::Model with_values = model;
-  apply_parameter_overrides(with_values);
   const std::vector<ParameterSeed> seeds = parameter_seeds(with_values, seeded_targets(model, sensitivity_params));
   pb.sensitivity_params = sensitivity_params;
   for (const auto& seed : seeds) pb.fluid_seeds.push_back(seed.fluid);
@@ -410,7 +400,6 @@ Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<
     const auto& p = model.parameters(i);
     ParameterSpec spec{p.name(), {p.targets().begin(), p.targets().end()}, values[i], {}};
     for (const auto& w : p.direction()) spec.direction.emplace_back(w.parameter(), w.weight());
-    set_parameter(pb, spec, spec.value);
     pb.parameters.push_back(spec);
   }
   pb.nodes.set_num_params(static_cast<int>(sensitivity_params.size()));

@@ -8,6 +8,7 @@
 
 #include <functional>
 
+#include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
 
 namespace pfem {
@@ -284,6 +285,27 @@ TEST(ParameterTargets, ParameterValuesAtTheModelsPoint) {
   apply_parameter_overrides(m);
   EXPECT_EQ(m.fluid().rho(), 1010.0);
   EXPECT_EQ(parameter_values(m), (std::vector<double>{1.0e6, 1010.0, 1010.0, 0.0}));
+}
+
+// The built problem's fluid constants and thickness are those of the model with the parameters'
+// values set: a parameter without a value leaves its targets as the model has them (it used to set
+// its first target's value on its other fluid and thickness targets: here mu = rho = 1000).
+TEST(ParameterTargets, TheBuiltProblemHasTheModelsValueWhereNoParameterSetsOne) {
+  Model m = read_model_file(std::string(PFEM_SOURCE_DIR) + "/examples/sloshing-beam.json");
+  m.clear_parameters();
+  auto* p = m.add_parameters();
+  p->set_name("linked");
+  for (const char* t : {"fluid.rho", "fluid.mu", "thickness"}) p->add_targets(t);
+  Problem pb = build_problem(m);
+  EXPECT_EQ(pb.fluid.rho, 1000.0);
+  EXPECT_EQ(pb.fluid.mu, 0.1);
+  EXPECT_EQ(pb.thickness, 0.012);
+  EXPECT_EQ(pb.parameters[0].value, 1000.0);  // its first target's
+  p->set_value(0.5);
+  pb = build_problem(m);
+  EXPECT_EQ(pb.fluid.rho, 0.5);
+  EXPECT_EQ(pb.fluid.mu, 0.5);
+  EXPECT_EQ(pb.thickness, 0.5);
 }
 
 TEST(ParameterTargets, OverridesReportEveryBadTarget) {
