@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/io/model_checks.h"
 #include "engine/io/parameter_targets.h"
 
 namespace pfem {
@@ -35,6 +36,18 @@ void check_direction(const pfem::v1::Model& model, const pfem::v1::Parameter& p,
   }
 }
 
+// Parameter p's value, when it has one: finite, within each of its targets' ranges.
+void check_value(const pfem::v1::Model& model, const pfem::v1::Parameter& p, const std::string& path,
+                 FieldChecker& out) {
+  if (!p.has_value()) return;
+  if (!std::isfinite(p.value())) return out.error(path + ".value", "must be a finite number");
+  std::set<std::string> seen;  // a target listed twice has its own error
+  for (const auto& t : p.targets()) {
+    if (!seen.insert(t).second) continue;
+    if (const std::string why = target_value_error(model, t, p.value()); !why.empty()) out.error(path + ".value", why);
+  }
+}
+
 }  // namespace
 
 void check_parameters(const pfem::v1::Model& model, FieldChecker& out) {
@@ -50,24 +63,23 @@ void check_parameters(const pfem::v1::Model& model, FieldChecker& out) {
     }
     if (p.targets_size() == 0) out.error(path + ".targets", "needs at least one target (or a direction)");
     std::set<std::string> seen;
-    std::vector<std::string> targets;
     for (int k = 0; k < p.targets_size(); ++k) {
       if (!seen.insert(p.targets(k)).second) {
         out.error(at(path + ".targets", k), "target '" + p.targets(k) + "' is listed twice");
         continue;
       }
-      targets.push_back(p.targets(k));
       if (const std::string why = target_error(model, p.targets(k)); !why.empty())
         out.error(at(path + ".targets", k), why);
     }
-    if (p.has_value()) {
-      if (!std::isfinite(p.value())) out.error(path + ".value", "must be a finite number");
-      else
-        for (const auto& t : targets)
-          if (const std::string why = target_value_error(model, t, p.value()); !why.empty())
-            out.error(path + ".value", why);
-    }
+    check_value(model, p, path, out);
   }
+}
+
+std::vector<FieldError> validate_parameter_values(const pfem::v1::Model& model) {
+  FieldChecker out;
+  for (int i = 0; i < model.parameters_size(); ++i)
+    if (model.parameters(i).direction_size() == 0) check_value(model, model.parameters(i), at("parameters", i), out);
+  return out.errors();
 }
 
 }  // namespace pfem

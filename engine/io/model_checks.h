@@ -24,6 +24,11 @@ std::optional<std::pair<std::string, int>> split_generated_name(const std::strin
 // for a model that may have no fluid yet.
 std::vector<FieldError> validate_structure(const pfem::v1::Model& model);
 
+// The checks of the parameters' values alone (finite, within each target's range): all that
+// validate_model can find wrong in a valid model whose parameter values were changed, since no
+// other check reads them (the FDM's perturbed models).
+std::vector<FieldError> validate_parameter_values(const pfem::v1::Model& model);
+
 class ModelChecker {
  public:
   explicit ModelChecker(const pfem::v1::Model& model) : model_(model) {}
