@@ -10,8 +10,8 @@
 #include "clients/reliability/parallel.h"
 #include "clients/reliability/report.h"
 #include "engine/analysis/run.h"
-#include "engine/io/model_builder.h"
 #include "engine/io/model_io.h"
+#include "engine/io/parameter_targets.h"
 #include "pfem/v1/service.grpc.pb.h"
 
 namespace pfem::reliability {
@@ -397,15 +397,14 @@ std::vector<std::string> model_recorder_names(const pfem::v1::Model& model) {
 }
 
 std::optional<double> model_parameter_value(const pfem::v1::Model& model, const std::string& name) {
-  for (const auto& p : model.parameters()) {
-    if (p.name() == name && p.has_value()) return p.value();
-  }
+  pfem::v1::Model with_values = model;
   try {
-    const pfem::Problem problem = pfem::build_problem(model);
-    for (const auto& p : problem.parameters) {
-      if (p.name == name) return p.value;
+    pfem::apply_parameter_overrides(with_values);
+    const std::vector<double> values = pfem::parameter_values(with_values);
+    for (int i = 0; i < model.parameters_size(); ++i) {
+      if (model.parameters(i).name() == name) return values[i];
     }
-  } catch (const std::exception&) {
+  } catch (const pfem::ModelError&) {
   }
   return std::nullopt;
 }

@@ -122,8 +122,9 @@ std::unique_ptr<ModelEvaluator> make_evaluator(const pfem::v1::Model& model,
 // Names of the model's parameters and recorders (for validation by the drivers).
 std::vector<std::string> model_parameter_names(const pfem::v1::Model& model);
 std::vector<std::string> model_recorder_names(const pfem::v1::Model& model);
-// The value a parameter has in the model: its `value`, or else the value of its first target
-// as the model file gives it. nullopt when the target is not found.
+// The value a parameter has in the model (pfem::parameter_values): its `value`, or else the value
+// of its first target once the other parameters' values are set. nullopt when there is no
+// parameter of that name or a target names no value.
 std::optional<double> model_parameter_value(const pfem::v1::Model& model, const std::string& name);
 
 }  // namespace pfem::reliability

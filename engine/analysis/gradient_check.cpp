@@ -23,6 +23,7 @@ double relative_difference(const Histories& a, const Histories& b, std::size_t j
 GradientCheck check_gradients(const pfem::v1::Model& model, RunOptions options, bool without_geometric) {
   GradientCheck out;
   options.sensitivity = SensitivityMethod::kDdm;
+  options.prepared = prepare_run(model, options);  // validated and built once for both DDM runs
   const RunResult ddm = run(model, options);
   out.ddm = ddm.summary;
   RunResult approximate;
@@ -32,6 +33,7 @@ GradientCheck check_gradients(const pfem::v1::Model& model, RunOptions options, 
     options.drop_geometric_terms = false;
   }
   options.sensitivity = SensitivityMethod::kFdm;
+  options.prepared = prepare_run(model, options, /*validated=*/true);  // without the DDM's seeds
   const RunResult fdm = run(model, options);
   out.fdm = fdm.summary;
   if (ddm.summary.status != RunStatus::kCompleted || fdm.summary.status != RunStatus::kCompleted) return out;

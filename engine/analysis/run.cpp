@@ -11,6 +11,7 @@
 #include "engine/analysis/simulation.h"
 #include "engine/base/assert.h"
 #include "engine/io/model_builder.h"
+#include "engine/io/model_checks.h"
 #include "engine/io/model_io.h"
 #include "engine/io/model_size.h"
 #include "engine/io/model_warnings.h"
@@ -80,9 +81,10 @@ double fdm_step(const Problem& pb, const ParameterSpec& p, double eps) {
   return std::isfinite(step) ? step : eps;
 }
 
-// The problem of the model with parameter p moved by s (a directional one moves each of its
-// parameters k to v_k + w_k s): rebuilt from the model, so that every kind of target (fluid,
-// thickness, materials, sections, beams) takes the value.
+// The problem of the validated model with parameter p moved by s (a directional one moves each of
+// its parameters k to v_k + w_k s): rebuilt from the model, so that every kind of target (fluid,
+// thickness, materials, sections, beams, wavemakers) takes the value. Throws ModelError when a
+// value leaves its targets' range, the one thing validation could refuse in the moved model.
 Problem problem_with(const pfem::v1::Model& model, const Problem& base, const ParameterSpec& p, double s) {
   std::vector<std::pair<std::string, double>> values;
   if (p.direction.empty()) values.emplace_back(p.name, p.value + s);
@@ -91,7 +93,8 @@ Problem problem_with(const pfem::v1::Model& model, const Problem& base, const Pa
   for (auto& q : *changed.mutable_parameters())
     for (const auto& [name, value] : values)
       if (q.name() == name) q.set_value(value);
-  Problem pb = build_problem(changed);
+  if (auto errors = validate_parameter_values(changed); !errors.empty()) throw ModelError(std::move(errors));
+  Problem pb = build_validated_problem(changed);
   pb.t_end = base.t_end, pb.dt = base.dt;  // the run's overrides
   return pb;
 }

@@ -120,6 +120,7 @@ int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& 
     const WallKinematics walls = wall_kinematics(problem, nodes, t, t + settings.dt);
     settings.wall_velocity = walls.velocity;
     settings.wall_velocity_sensitivity = walls.sensitivity;
+    settings.give_up_inverted = depth < kMaxHalvings;
     step.advance(mesh, settings, nodes, cancel);
     place_moving_walls(problem, t + settings.dt, walls, nodes);
     add_work(sum, step.last_report());

@@ -9,6 +9,7 @@
 #include "engine/io/model_checks.h"
 #include "engine/io/model_io.h"
 #include "engine/io/motion_builder.h"
+#include "engine/io/parameter_targets.h"
 #include "engine/io/structure_builder.h"
 
 namespace pfem {
@@ -248,46 +249,26 @@ int nearest_node(const NodeState& nodes, double x, double y) {
   return best;
 }
 
-// Sets the fluid and thickness targets of a parameter (structure targets are applied to the
-// model before the structure is built).
-void set_parameter(Problem& problem, const ParameterSpec& parameter, double value) {
-  for (const auto& t : parameter.targets) {
-    if (t == "fluid.rho") problem.fluid.rho = value;
-    else if (t == "fluid.mu") problem.fluid.mu = value;
-    else if (t == "fluid.kappa") problem.fluid.kappa = value;
-    else if (t == "thickness") problem.thickness = value;
-  }
-}
-
-}  // namespace
-
-namespace {
-// Each differentiated parameter's seeded targets, and its seed on the fluid constants: weight 1
-// on its own targets, or w_k on those of every parameter k a directional one weighs.
-void sensitivity_seeds(const pfem::v1::Model& model, const std::vector<std::string>& names, Problem& pb,
-                       std::vector<std::vector<SeedTarget>>& targets) {
+// Each differentiated parameter's seeded targets: weight 1 on its own targets, or w_k on those of
+// every parameter k a directional one weighs.
+std::vector<std::vector<SeedTarget>> seeded_targets(const pfem::v1::Model& model,
+                                                    const std::vector<std::string>& names) {
   const auto find = [&](const std::string& name) -> const pfem::v1::Parameter& {  // checked: it exists
     return *std::find_if(model.parameters().begin(), model.parameters().end(),
                          [&](const auto& q) { return q.name() == name; });
   };
+  std::vector<std::vector<SeedTarget>> targets;
   for (const auto& name : names) {
     const pfem::v1::Parameter& p = find(name);
     std::vector<SeedTarget> seeded;
     for (const auto& t : p.targets()) seeded.push_back({t, 1.0});
     for (const auto& w : p.direction())  // validated: each names a parameter with targets
       for (const auto& t : find(w.parameter()).targets()) seeded.push_back({t, w.weight()});
-    fluid::FluidSeed seed;
-    for (const auto& [t, weight] : seeded) {
-      if (t == "fluid.rho") seed.rho += weight;
-      else if (t == "fluid.mu") seed.mu += weight;
-      else if (t == "fluid.kappa") seed.kappa += weight;
-      else if (t == "thickness") seed.thickness += weight;
-    }
     targets.push_back(std::move(seeded));
-    pb.sensitivity_params.push_back(name);
-    pb.fluid_seeds.push_back(seed);
   }
+  return targets;
 }
+
 }  // namespace
 
 std::vector<FieldError> model_errors(const pfem::v1::Model& model) {
@@ -307,9 +288,13 @@ Problem build_problem(const pfem::v1::Model& model, const std::vector<std::strin
 }
 
 Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<std::string>& sensitivity_params) {
+  // The model with every parameter's value on its targets: the fluid, the thickness, the walls'
+  // motions and the structure are built from it.
+  pfem::v1::Model with_values = model;
+  apply_parameter_overrides(with_values);
   Problem pb;
-  pb.fluid = {model.fluid().rho(), model.fluid().mu(), model.fluid().kappa()};
-  pb.thickness = model.has_thickness() ? model.thickness() : 1.0;
+  pb.fluid = {with_values.fluid().rho(), with_values.fluid().mu(), with_values.fluid().kappa()};
+  pb.thickness = model_target_value(with_values, "thickness");
   if (model.has_gravity()) pb.gx = model.gravity().x(), pb.gy = model.gravity().y();
   pb.h = model.mesh().h();
   pb.alpha = model.mesh().has_alpha() ? model.mesh().alpha() : 1.2;
@@ -334,15 +319,13 @@ Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<
   pb.domain = {domain.xmin, domain.ymin, domain.xmax, domain.ymax};
   pb.fail_on_exit = model.has_domain() && model.domain().on_exit() == "fail";
 
-  // The model with every parameter's value on its targets (the structure is built from it).
-  pfem::v1::Model with_values = model;
-  apply_parameter_overrides(with_values);
-  std::vector<std::vector<SeedTarget>> sensitivity_targets;
-  sensitivity_seeds(model, sensitivity_params, pb, sensitivity_targets);
+  const std::vector<ParameterSeed> seeds = parameter_seeds(with_values, seeded_targets(model, sensitivity_params));
+  pb.sensitivity_params = sensitivity_params;
+  for (const auto& seed : seeds) pb.fluid_seeds.push_back(seed.fluid);
   std::vector<std::vector<std::array<std::int32_t, 2>>> wall_pieces;
   std::vector<std::vector<int>> wall_nodes;
   auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments, pb, wall_pieces, wall_nodes);
-  pb.moving_walls = build_wall_motions(with_values, wall_nodes, sensitivity_targets);
+  pb.moving_walls = build_wall_motions(with_values, wall_nodes, seeds);
   pb.moving_node.assign(pb.nodes.size(), 0);
   for (const auto& m : pb.moving_walls)
     for (const int i : m.nodes) pb.moving_node[i] = 1;
@@ -355,7 +338,7 @@ Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<
   }
   std::map<std::string, int> structure_node_by_name, element_by_name;
   if (model.has_structure()) {
-    StructureBuild sb = build_structure(with_values, sensitivity_targets, /*validated=*/true);
+    StructureBuild sb = build_structure(with_values, seeds, /*validated=*/true);
     for (int k = 0; k < sb.model.num_nodes(); ++k) {
       const auto& node = sb.model.node(k);
       pb.structure_nodes.push_back(pb.nodes.add(node.x(0), node.x(1), NodeKind::Structure));
@@ -413,16 +396,11 @@ Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<
     }
     pb.recorders.push_back(spec);
   }
-  // A parameter without a value takes its first target's value after every override, so that it
-  // never undoes another parameter that sets the same target.
-  // A directional parameter sets nothing: its value is 0, its point its parameters'.
-  for (const auto& p : model.parameters()) {
-    ParameterSpec spec{p.name(), {p.targets().begin(), p.targets().end()}, 0.0, {}};
+  const std::vector<double> values = parameter_values(with_values);
+  for (int i = 0; i < model.parameters_size(); ++i) {
+    const auto& p = model.parameters(i);
+    ParameterSpec spec{p.name(), {p.targets().begin(), p.targets().end()}, values[i], {}};
     for (const auto& w : p.direction()) spec.direction.emplace_back(w.parameter(), w.weight());
-    if (!spec.targets.empty()) {
-      spec.value = p.has_value() ? p.value() : model_target_value(with_values, spec.targets.front());
-      set_parameter(pb, spec, spec.value);
-    }
     pb.parameters.push_back(spec);
   }
   pb.nodes.set_num_params(static_cast<int>(sensitivity_params.size()));

@@ -34,7 +34,7 @@ std::vector<FieldError> ModelChecker::run() {
   check_regions(model_, out);
   check_analysis(model_, out);
   check_recorders(model_, names, out);
-  check_parameters(model_, names, out);
+  check_parameters(model_, out);
   check_structure(model_, names, out);
   return out.errors();
 }

@@ -16,22 +16,6 @@ bool is_element_quantity(const std::string& q);
 bool is_global_quantity(const std::string& q);
 bool is_point_quantity(const std::string& q);
 
-// A parameter target split into its parts:
-//   "fluid.rho"              -> {"fluid", "", "rho"}        (also mu, kappa)
-//   "thickness"              -> {"thickness", "", ""}
-//   "material.steel.fy"      -> {"material", "steel", "fy"}  (e, fy, hardening_ratio)
-//   "section.sq.width"       -> {"section", "sq", "width"}   (width, depth, e, area, inertia)
-//   "beam.tower.rho"         -> {"beam", "tower", "rho"}
-struct TargetRef {
-  std::string kind;
-  std::string name;      // component name (material, section, beam); empty otherwise
-  std::string property;  // empty for thickness
-};
-// The parts of a target of a known form; nullopt otherwise. Names are not resolved here.
-std::optional<TargetRef> parse_parameter_target(const std::string& target);
-// Whether the target has a known form (its component name is not resolved).
-bool is_parameter_target(const std::string& target);
-
 // Whether analysis.formulation is "incompressible" (div v = 0, no bulk modulus; the default is
 // "quasi-incompressible").
 bool is_incompressible(const pfem::v1::Model& model);
@@ -43,6 +27,11 @@ std::optional<std::pair<std::string, int>> split_generated_name(const std::strin
 // Only the checks of model.structure (paths "structure...."): what build_structure() needs
 // for a model that may have no fluid yet.
 std::vector<FieldError> validate_structure(const pfem::v1::Model& model);
+
+// The checks of the parameters' values alone (finite, within each target's range): all that
+// validate_model can find wrong in a valid model whose parameter values were changed, since no
+// other check reads them (the FDM's perturbed models).
+std::vector<FieldError> validate_parameter_values(const pfem::v1::Model& model);
 
 class ModelChecker {
  public:

@@ -44,24 +44,14 @@ double gravity_magnitude(const pfem::v1::Model& model) {
 
 std::vector<motion::WallMotion> build_wall_motions(const pfem::v1::Model& model,
                                                    const std::vector<std::vector<int>>& wall_nodes,
-                                                   const std::vector<std::vector<SeedTarget>>& sensitivity_targets) {
+                                                   const std::vector<ParameterSeed>& seeds) {
   std::vector<motion::WallMotion> out;
   for (int w = 0; w < model.walls_size(); ++w) {
     const auto& wall = model.walls(w);
     if (!wall.has_motion()) continue;
     motion::WallMotion wm = wall_motion(wall, gravity_magnitude(model));
     wm.nodes = wall_nodes[w];
-    const std::string prefix = "wavemaker." + wall.name() + ".";
-    for (const auto& targets : sensitivity_targets) {
-      motion::SignalSeed seed;
-      for (const auto& [target, weight] : targets) {
-        if (target == prefix + "stroke") seed.stroke += weight;
-        else if (target == prefix + "period") seed.period += weight;
-        else if (target == prefix + "height") seed.height += weight;
-        else if (target == prefix + "scale") seed.scale += weight;
-      }
-      wm.seeds.push_back(seed);
-    }
+    for (const auto& seed : seeds) wm.seeds.push_back(seed.walls[w]);
     out.push_back(std::move(wm));
   }
   return out;

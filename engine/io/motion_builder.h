@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "engine/io/model_io.h"
-#include "engine/io/structure_builder.h"
+#include "engine/io/parameter_targets.h"
 #include "engine/motion/wall_motion.h"
 
 namespace pfem {
@@ -13,10 +13,10 @@ motion::WallMotion wall_motion(const pfem::v1::Wall& wall, double gravity);
 double gravity_magnitude(const pfem::v1::Model& model);
 
 // The moving walls of `model` (its parameters' values already applied), in wall order, each with
-// its nodes (wall_nodes[w]: the nodes of wall w) and per DDM parameter its seed, from the
-// "wavemaker.<wall>.<property>" entries of sensitivity_targets.
+// its nodes (wall_nodes[w]: the nodes of wall w) and per DDM parameter k its seed, seeds[k].walls[w]
+// (parameter_seeds of this model).
 std::vector<motion::WallMotion> build_wall_motions(const pfem::v1::Model& model,
                                                    const std::vector<std::vector<int>>& wall_nodes,
-                                                   const std::vector<std::vector<SeedTarget>>& sensitivity_targets);
+                                                   const std::vector<ParameterSeed>& seeds);
 
 }  // namespace pfem

@@ -19,7 +19,7 @@ void check_regions(const pfem::v1::Model& model, FieldChecker& out);
 
 // check_recorders.cpp, check_parameters.cpp, check_structure.cpp.
 void check_recorders(const pfem::v1::Model& model, const StructureNames& components, FieldChecker& out);
-void check_parameters(const pfem::v1::Model& model, const StructureNames& components, FieldChecker& out);
+void check_parameters(const pfem::v1::Model& model, FieldChecker& out);
 void check_structure(const pfem::v1::Model& model, const StructureNames& names, FieldChecker& out);
 
 }  // namespace pfem

@@ -7,26 +7,17 @@
 // from its from_node. Elements beam by beam, "<beam>/1" ... "<beam>/<n>" from its from_node;
 // element k joins the beam's nodes k-1 and k.
 //
-// Parameters: a target ("material.steel.fy", "section.sq.width", "thickness", ...; see
-// model.proto, Parameter) is applied to the proto model, and the model is built afterwards,
-// so that the built objects never need setters: set_model_target() sets one target,
-// apply_parameter_overrides() sets every parameter that carries a value.
+// Parameters: their values are set on the proto model's targets (engine/io/parameter_targets.h),
+// and the model is built afterwards, so that the built objects never need setters.
 #include <map>
 #include <string>
 #include <vector>
 
 #include "engine/io/model_io.h"
+#include "engine/io/parameter_targets.h"
 #include "engine/structure/structure_model.h"
 
 namespace pfem {
-
-// A DDM seed on one parameter target (same forms as Parameter.targets): d target / d theta =
-// weight, 1 for a parameter's own targets, w_k for those of the parameters a directional one
-// weighs (model.proto, Parameter.direction).
-struct SeedTarget {
-  std::string target;
-  double weight = 1.0;
-};
 
 struct StructureBuild {
   structure::StructureModel model;
@@ -45,29 +36,12 @@ struct StructureBuild {
 // field paths ("structure.materials[1].bilinear.fy: must be > 0"); a std::invalid_argument
 // from engine/structure is reported at the path of the field it names.
 //
-// DDM: sensitivity_targets[k] lists the seeded targets of parameter theta_k. Each structural
-// target seeds its constant with its weight (several seeds of one parameter on one constant add
-// up; derived constants follow, e.g. A = b d and I = b d^3/12 of an elastic beam built from a
-// rectangle); "fluid.*" and "thickness" are ignored. The model is then sized for
-// P = sensitivity_targets.size() parameters. Errors at "sensitivity_targets[k][j]".
+// DDM: seeds[k] is parameter theta_k's seed on the model's constants (parameter_seeds of this
+// model): the materials, sections and beam densities take theirs, and derived constants follow
+// (A = b d and I = b d^3/12 of an elastic beam built from a rectangle). The model is then sized
+// for P = seeds.size() parameters.
 // validated: validate_model (or validate_structure) has passed the model already.
-StructureBuild build_structure(const pfem::v1::Model& model,
-                               const std::vector<std::vector<SeedTarget>>& sensitivity_targets = {},
+StructureBuild build_structure(const pfem::v1::Model& model, const std::vector<ParameterSeed>& seeds = {},
                                bool validated = false);
-
-// The current value of a parameter target (thickness: 1 when absent; material e: E of an
-// elastic material, E0 of a bilinear one). Throws ModelError at `path` for a target of an
-// unknown form or that names a missing component or a property its kind does not have.
-double model_target_value(const pfem::v1::Model& model, const std::string& target,
-                          const std::string& path = "target");
-
-// Sets a parameter target to value in the model (same targets and errors as above). The value
-// itself is not checked: validate or build the model afterwards.
-void set_model_target(pfem::v1::Model& model, const std::string& target, double value,
-                      const std::string& path = "target");
-
-// For every parameter that has a value, sets each of its targets to it (errors at
-// "parameters[i].targets[k]").
-void apply_parameter_overrides(pfem::v1::Model& model);
 
 }  // namespace pfem

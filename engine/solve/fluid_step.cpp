@@ -193,28 +193,6 @@ void UnifiedStep::condense_element(int e, const StepSettings& s, const fluid::Ge
   k.bottomRightCorner<3, 3>() = -(gcb_inv * b.g_b);
 }
 
-void UnifiedStep::condensed_triplets(const mesh::FluidMesh& mesh, const StepSettings& s,
-                                     const std::vector<fluid::GeometricDerivatives>& geometric,
-                                     std::vector<BubbleCondensation>& bubbles,
-                                     std::vector<Eigen::Triplet<double>>& t) const {
-  const int ne = static_cast<int>(mesh.triangles.size());
-  bubbles.resize(ne);
-  t.reserve(t.size() + 81 * ne + num_.pressures);
-  CondensedElement k;
-  for (int e = 0; e < ne; ++e) {
-    condense_element(e, s, &geometric[e], bubbles[e], k);
-    const std::array<int, 9> u = num_.condensed_unknowns(mesh.triangles[e], e);
-    for (int r = 0; r < 9; ++r)
-      for (int c = 0; c < 9; ++c)
-        if (u[r] >= 0 && u[c] >= 0) t.emplace_back(u[r], u[c], k(r, c));
-  }
-  for (int q = 0; q < num_.pressures; ++q) {
-    const int u = num_.node_velocities + q;
-    t.emplace_back(u, u, -mp_[q] / s.dt);
-  }
-  structure_.add_tangent([&t](int row, int col, double value) { t.emplace_back(row, col, value); });
-}
-
 namespace {
 // The corner pairs of a triangle whose blocks the symmetric Newton matrix needs once each: rows
 // of the first corner, columns of the second.
@@ -267,6 +245,104 @@ void UnifiedStep::analyze_condensed(const mesh::FluidMesh& mesh, const StepSetti
     const int u = num_.node_velocities + q;
     pressure_diagonal_[q] = condensed_solver_.block(u, u).base;
   }
+  lu_layout_ready_ = false;
+  analyzed_ = true;
+  first_of_node_ = std::move(first);
+}
+
+void UnifiedStep::jacobian_layout(const mesh::FluidMesh& mesh) {
+  // The LU takes the LDL^T's analysis, and each triangle's nine corner-pair blocks (both orders)
+  // from the six the LDL^T has (a pair's reverse is the same place with the steps exchanged).
+  const int ne = static_cast<int>(mesh.triangles.size());
+  jacobian_lu_.analyze_as(condensed_solver_);
+  lu_blocks_.resize(ne);
+  for (int e = 0; e < ne; ++e) {
+    const auto& tri = mesh.triangles[e];
+    for (std::size_t p = 0; p < kCornerPairs.size(); ++p) {
+      const SupernodalLdlt::Block& b = element_blocks_[e][p];
+      const int a = kCornerPairs[p][0], c = kCornerPairs[p][1];
+      if (b.base < 0) {
+        lu_blocks_[e][3 * a + c] = lu_blocks_[e][3 * c + a] = SupernodalLu::Block{-1, 0, 0, false};
+        continue;
+      }
+      const int row0 = first_of_node_[tri[a]], col0 = first_of_node_[tri[c]];
+      lu_blocks_[e][3 * a + c] = jacobian_lu_.block(row0, col0, b.base, b.row_step, b.col_step);
+      if (a != c) lu_blocks_[e][3 * c + a] = jacobian_lu_.block(col0, row0, b.base, b.col_step, b.row_step);
+    }
+  }
+  lu_layout_ready_ = true;
+}
+
+void UnifiedStep::jacobian_elements(const mesh::FluidMesh& mesh, const StepSettings& s, bool geometric_terms) {
+  element_matrices(s);
+  const int ne = static_cast<int>(mesh.triangles.size());
+  geometric_.resize(ne);
+  jacobian_bubbles_.resize(ne);
+  jacobian_elements_.resize(ne);
+#pragma omp parallel for schedule(static) num_threads(s.threads)
+  for (int e = 0; e < ne; ++e) {
+    if (geometric_terms) {
+      fluid::geometric_derivatives(geometries_[e], mats_[e], s.fluid.mu, s.thickness, s.dt, element_state(mesh, e),
+                                   geometric_[e]);
+    } else {
+      geometric_[e].drv_dx.setZero();
+      geometric_[e].drp_dx.setZero();
+    }
+    condense_element(e, s, &geometric_[e], jacobian_bubbles_[e], jacobian_elements_[e]);
+  }
+}
+
+void UnifiedStep::factorize_jacobian(const mesh::FluidMesh& mesh, const StepSettings& s) {
+  // The elements' condensed blocks added straight into the LU's storage, as the Newton matrix's
+  // are into the LDL^T's.
+  if (!lu_layout_ready_) jacobian_layout(mesh);
+  jacobian_lu_.zero_values();
+  const int ne = static_cast<int>(mesh.triangles.size());
+  for (int e = 0; e < ne; ++e) {
+    const CondensedElement& k = jacobian_elements_[e];
+    const std::array<int, 9> u = num_.condensed_unknowns(mesh.triangles[e], e);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        const SupernodalLu::Block& blk = lu_blocks_[e][3 * a + b];
+        if (blk.base < 0) continue;
+        double* values = jacobian_lu_.values(blk.upper);
+        for (const int r : {2 * a, 2 * a + 1, 6 + a}) {
+          if (u[r] < 0) continue;
+          const long row = blk.base + slot_[u[r]] * blk.row_step;
+          for (const int c : {2 * b, 2 * b + 1, 6 + b})
+            if (u[c] >= 0) values[row + slot_[u[c]] * blk.col_step] += k(r, c);
+        }
+      }
+  }
+  for (int q = 0; q < num_.pressures; ++q) {
+    const int u = num_.node_velocities + q;
+    const SupernodalLu::Block blk = jacobian_lu_.block(u, u, pressure_diagonal_[q], 1, 1);
+    jacobian_lu_.values(blk.upper)[blk.base] -= mp_[q] / s.dt;
+  }
+  structure_.add_tangent([this](int row, int col, double value) {
+    const SupernodalLu::Block blk = jacobian_lu_.block(row, col);
+    jacobian_lu_.values(blk.upper)[blk.base] += value;
+  });
+  if (!jacobian_lu_.factorize_values()) throw StepFailure("the Jacobian could not be factorised (non-finite pivot)");
+}
+
+Eigen::VectorXd UnifiedStep::jacobian_product(const mesh::FluidMesh& mesh, const StepSettings& s,
+                                              const Eigen::VectorXd& x) const {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(x.size());
+  for (std::size_t e = 0; e < jacobian_elements_.size(); ++e) {
+    const std::array<int, 9> u = num_.condensed_unknowns(mesh.triangles[e], static_cast<int>(e));
+    Eigen::Matrix<double, 9, 1> xe;
+    for (int c = 0; c < 9; ++c) xe(c) = u[c] >= 0 ? x[u[c]] : 0.0;
+    const Eigen::Matrix<double, 9, 1> ye = jacobian_elements_[e] * xe;
+    for (int r = 0; r < 9; ++r)
+      if (u[r] >= 0) y[u[r]] += ye(r);
+  }
+  for (int q = 0; q < num_.pressures; ++q) {
+    const int u = num_.node_velocities + q;
+    y[u] -= mp_[q] / s.dt * x[u];
+  }
+  structure_.add_tangent([&](int row, int col, double value) { y[row] += value * x[col]; });
+  return y;
 }
 
 void UnifiedStep::factorize_condensed_bubble(const mesh::FluidMesh& mesh, const StepSettings& s, bool analyze) {
@@ -383,6 +459,10 @@ void UnifiedStep::correct_condensed_bubble(const mesh::FluidMesh& mesh) {
   p_ += dp.col(0);
 }
 
+bool UnifiedStep::any_inverted() const {
+  return std::any_of(geometries_.begin(), geometries_.end(), [](const fluid::TriangleGeometry& g) { return !(g.A > 0.0); });
+}
+
 void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
   // A particle whose move crosses a wall or beam hits it (advance() takes it out): typically a
   // splash particle reaching the floor or the obstacle's back, in free-surface triangles that
@@ -447,13 +527,13 @@ double UnifiedStep::relative_residual(const StepSettings& s) const {
 }
 
 void UnifiedStep::newton_correction(const mesh::FluidMesh& mesh, const StepSettings& s, bool first, bool stalled) {
+  const bool global = s.formulation == StepSettings::Formulation::kGlobalBubble;
+  auto t0 = Clock::now();
   // One factorisation per step serves every iteration (the fluid's tangent changes only
   // through the small geometry update); refactorise at the current iterate if convergence
   // stalls. The structure's block follows every iterate: a fiber that yields or unloads
   // changes its tangent fifty-fold, and a stale one held the yielding obstacle's steps at a
   // contraction of 0.4 per iteration (20 iterations instead of 8).
-  const bool global = s.formulation == StepSettings::Formulation::kGlobalBubble;
-  auto t0 = Clock::now();
   const bool update = !first && !stalled && !global && s.structure.model;
   if (first || stalled || (update && !update_structure_tangent())) {
     try {
@@ -521,6 +601,7 @@ void UnifiedStep::commit_pressures(const mesh::FluidMesh& mesh, NodeState& nodes
 StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes,
                                 const std::atomic<bool>* cancel) {
   report_ = StepReport{};
+  analyzed_ = false;
   xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy;
   wall_velocity_ = s.wall_velocity;
   if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
@@ -530,7 +611,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   report_.pressure_unknowns = num_.pressures;
   initial_iterate(mesh, s, nodes);
 
-  NewtonMonitor newton(s.tolerance, s.max_iterations);
+  NewtonMonitor newton(s.tolerance, s.max_iterations, s.give_up_inverted);
   for (;;) {
     if (cancel && cancel->load(std::memory_order_relaxed)) throw StepCancelled();
     auto t0 = Clock::now();
@@ -538,7 +619,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     residuals(mesh);
     s_force_scale_ = structure_.add_residual(v_, rv_);
     report_.assemble_seconds += seconds_since(t0);
-    newton.record(report_.residual = relative_residual(s));
+    newton.record(report_.residual = relative_residual(s), any_inverted());
     const int it = newton.iteration();
     if (!std::isfinite(report_.residual))
       throw StepFailure("Newton produced a non-finite residual at iteration " + std::to_string(it));
@@ -546,7 +627,10 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     if (newton.out_of_iterations() || newton.hopeless()) {
       char msg[128];
       std::snprintf(msg, sizeof msg, "Newton did not converge in %d iterations (relative residual %.3e%s)", it,
-                    report_.residual, newton.hopeless() ? ", not halved in the last iterations" : "");
+                    report_.residual,
+                    newton.inverted_and_stagnating() ? ", a triangle inverted and the residual stagnating"
+                    : newton.hopeless()              ? ", not halved in the last iterations"
+                                                     : "");
       throw StepFailure(msg);
     }
     newton_correction(mesh, s, it == 0, newton.stalled());

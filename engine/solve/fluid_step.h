@@ -54,6 +54,7 @@
 #include "engine/solve/step_solver.h"
 #include "engine/solve/step_structure.h"
 #include "engine/solve/supernodal_ldlt.h"
+#include "engine/solve/supernodal_lu.h"
 #include "engine/solve/wall_guard.h"
 #include "engine/structure/structure_model.h"
 
@@ -63,6 +64,9 @@ struct StepSettings {
   double dt = 0.0;
   double tolerance = 1e-10;  // relative residual
   int max_iterations = 50;
+  // Whether an inverted, stagnating Newton iterate gives the step up (newton_monitor.h): not on
+  // the last retry a step has.
+  bool give_up_inverted = false;
   fluid::FluidConstants fluid;
   double thickness = 1.0;
   double gx = 0.0, gy = -9.81;
@@ -131,8 +135,7 @@ class UnifiedStep : public StepSolver {
   // The report of the last call, also when it threw (the work of a failed attempt).
   const StepReport& last_report() const override { return report_; }
   // Saves or restores what one step hands to the next (the bubble velocities and their
-  // sensitivities by triangle, the sensitivity solver's choice and its LU's symbolic analysis)
-  // for a checkpoint; between steps only.
+  // sensitivities by triangle) for a checkpoint; between steps only.
   void archive(StateArchive& a) override;
 
  private:
@@ -188,11 +191,6 @@ class UnifiedStep : public StepSolver {
   double velocity_y(int i) const;
   // The prescribed velocity of component c (0: x, 1: y) of node i (0 unless a moving wall's).
   double wall_velocity(int i, int c) const;
-  // Triplets of the exact Jacobian (the condensed matrix with H and T, in full) and each
-  // element's condensation.
-  void condensed_triplets(const mesh::FluidMesh& mesh, const StepSettings& s,
-                          const std::vector<fluid::GeometricDerivatives>& geometric,
-                          std::vector<BubbleCondensation>& bubbles, std::vector<Eigen::Triplet<double>>& t) const;
   // The condensed matrix's symbolic analysis on the graph of the mesh nodes, and where each
   // triangle's blocks go in the factor.
   void analyze_condensed(const mesh::FluidMesh& mesh, const StepSettings& s);
@@ -203,17 +201,22 @@ class UnifiedStep : public StepSolver {
   void solve_condensed(const mesh::FluidMesh& mesh, const std::vector<BubbleCondensation>& bubbles,
                        const CondensedSolve& solve, const Eigen::MatrixXd& rv, const Eigen::MatrixXd& rp,
                        Eigen::MatrixXd& dv, Eigen::MatrixXd& dp) const;
+  // Whether a triangle is inverted (or flat) at the current iterate.
+  bool any_inverted() const;
   // A converged state with an inverted triangle is no solution of the PFEM step: throws
   // StepFailure so that the step is retried shorter. A particle whose converged move crosses a
   // wall or beam is marked in hits_wall_ instead (its triangles may invert): it is removed. Sets
   // walls_ (engine/solve/wall_guard.h) for the particles outside the mesh.
   void check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
-  // The exact Jacobian at the current iterate (engine/solve/step_sensitivity.cpp): H and T per
-  // element (kept in geometric_; zero without geometric terms) and the structure's consistent
-  // tangent, condensed like the response's matrix. (As a Newton matrix it did not pay: the
-  // modified Newton's symmetric factorisation is cheaper than the few iterations it would save.)
-  void assemble_jacobian(const mesh::FluidMesh& mesh, const StepSettings& s, bool geometric_terms);
-  void factorize_jacobian();  // UMFPACK, its symbolic analysis reused while the pattern stays
+  // The exact Jacobian at the current iterate, element by element: dt H and dt T (kept in
+  // geometric_; zero without geometric terms) condensed like the Newton matrix.
+  void jacobian_elements(const mesh::FluidMesh& mesh, const StepSettings& s, bool geometric_terms);
+  // Those blocks and the structure's consistent tangent into the LU, on the LDL^T's analysis
+  // (jacobian_layout, once a step), factorised.
+  void jacobian_layout(const mesh::FluidMesh& mesh);
+  void factorize_jacobian(const mesh::FluidMesh& mesh, const StepSettings& s);
+  // The Jacobian's product with x (condensed unknowns), from jacobian_elements.
+  Eigen::VectorXd jacobian_product(const mesh::FluidMesh& mesh, const StepSettings& s, const Eigen::VectorXd& x) const;
   // The DDM of the converged step: the Jacobian there, factorised once, and one right-hand side
   // per parameter; then the sensitivities committed to the nodes, the bubbles and the structure
   // (before the structure's own commit).
@@ -252,6 +255,7 @@ class UnifiedStep : public StepSolver {
   Eigen::VectorXd factor_mp_;  // Mp at the last factorisation
   SymmetricSolver global_solver_{SymmetricBackend::kCholmodLlt};
   SupernodalLdlt condensed_solver_;
+  std::vector<int> first_of_node_;  // per node: its first condensed unknown (-1: none)
   std::vector<int> slot_;  // per condensed unknown: its rank among its node's unknowns
   std::vector<std::array<SupernodalLdlt::Block, 6>> element_blocks_;  // per triangle and corner pair
   std::vector<long> pressure_diagonal_;  // per pressure unknown: its diagonal in the factor
@@ -261,14 +265,15 @@ class UnifiedStep : public StepSolver {
   // unknowns (one column per parameter).
   std::vector<BubbleHistory::Sensitivity> dvbn_;
   Eigen::MatrixXd dv_, dp_;
-  // The exact Jacobian's pieces.
+  // The exact Jacobian's pieces: per element its geometric derivatives, condensation and
+  // condensed block; the LU and where each triangle's blocks go in it.
   std::vector<fluid::GeometricDerivatives> geometric_;
   std::vector<BubbleCondensation> jacobian_bubbles_;
-  // lu_analyzed_: the Jacobian of the LU's symbolic analysis (UMFPACK's ordering depends on its
-  // values too: a restart redoes the analysis on it).
-  SparseMatrix jacobian_, lu_analyzed_;
-  int lu_steps_left_ = 0;  // steps that take the LU without trying GMRES first
-  LuSolver jacobian_solver_;
+  std::vector<CondensedElement> jacobian_elements_;
+  SupernodalLu jacobian_lu_;
+  std::vector<std::array<SupernodalLu::Block, 9>> lu_blocks_;
+  bool analyzed_ = false;  // this step's mesh analysed (analyze_condensed)
+  bool lu_layout_ready_ = false;
 };
 
 }  // namespace pfem

@@ -1,9 +1,9 @@
 #pragma once
 // SuiteSparse's factorisations behind one small interface: CHOLMOD for the SPD matrix of the
-// paper's global-bubble formulation (and as the reference in tests), UMFPACK for the
-// non-symmetric sensitivity matrix. (The default formulation's quasi-definite matrix has its own
-// supernodal LDL^T, supernodal_ldlt.h.) Symbolic analysis once per step (connectivity is fixed
-// within a step), numeric factorisation when the values change.
+// paper's global-bubble formulation, and CHOLMOD and UMFPACK as the references the own
+// supernodal factorisations (supernodal_ldlt.h for the Newton matrix, supernodal_lu.h for the
+// sensitivity matrix) are tested against. Symbolic analysis once per step (connectivity is
+// fixed within a step), numeric factorisation when the values change.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
@@ -36,7 +36,7 @@ class SymmetricSolver {
   std::unique_ptr<Impl> impl_;
 };
 
-// Factorises general square matrices with UMFPACK.
+// Factorises general square matrices with UMFPACK (the reference for SupernodalLu).
 class LuSolver {
  public:
   LuSolver();

@@ -6,9 +6,6 @@ namespace pfem {
 
 void UnifiedStep::archive(StateArchive& a) {
   bubble_history_.archive(a);
-  a(lu_steps_left_);
-  a(lu_analyzed_);
-  if (a.is_restoring() && lu_analyzed_.rows() > 0) jacobian_solver_.analyze(lu_analyzed_);
 }
 
 }  // namespace pfem

@@ -5,9 +5,9 @@
 // (A moving wall's node has no unknown: its prescribed velocity sensitivity dv_w adds
 // dr/dv_w dv_w to the right-hand side, with x = x_n + dt v there too.)
 // The matrix is the exact Jacobian of the step (H and T through dr/dx, the structure's
-// consistent tangent) and does not depend on the parameter: for a few parameters GMRES
-// preconditioned by the response's factorisation, for more one UMFPACK factorisation and a
-// multi-column back-substitution. The bubble is condensed per element exactly as in the
+// consistent tangent) and does not depend on the parameter: for one or two parameters GMRES
+// preconditioned by the response's factorisation, for more one LU (supernodal_lu.h) on the
+// analysis the Newton matrix already has and a back-substitution per parameter. The bubble is condensed per element exactly as in the
 // response, and its sensitivity is carried from step to step by triangle like its velocity.
 #include <algorithm>
 #include <stdexcept>
@@ -18,50 +18,20 @@
 namespace pfem {
 
 namespace {
-// Above this many parameters one LU of the Jacobian and its back-substitutions cost less than
-// a GMRES solve per parameter (measured on the yielding obstacle: 2.6 s vs 8.1 s at P = 1,
-// 7.0 s vs 9.4 s at P = 5, to t = 0.3 s).
-constexpr int kIterativeParameters = 6;
+// The relative residual each sensitivity solve must reach (the response's Newton tolerance is
+// 1e-10): at 1e-13 a directional parameter's run and the weighted sum of its parameters' runs,
+// one solved by GMRES and the other by the LU, parted by 2e-11 over 0.1 s of the sloshing beam.
+constexpr double kSensitivityTolerance = 1e-14;
 constexpr int kGmresIterations = 15;
-constexpr int kLuSteps = 50;
+// Above this many parameters one LU of the Jacobian and its back-substitutions cost less than
+// a GMRES solve per parameter preconditioned by the Newton factorisation (pfem-bench-ddm on the
+// yielding obstacle to 0.3 s: the LU's fixed part 0.5 of the response and 6 % a parameter
+// against 0.15 and 20 %).
+constexpr int kGmresParameters = 2;
 }  // namespace
 
-void UnifiedStep::assemble_jacobian(const mesh::FluidMesh& mesh, const StepSettings& s, bool geometric_terms) {
-  element_matrices(s);
-  const int ne = static_cast<int>(mesh.triangles.size());
-  geometric_.resize(ne);
-#pragma omp parallel for schedule(static) num_threads(s.threads)
-  for (int e = 0; e < ne; ++e) {
-    if (geometric_terms) {
-      fluid::geometric_derivatives(geometries_[e], mats_[e], s.fluid.mu, s.thickness, s.dt, element_state(mesh, e),
-                                   geometric_[e]);
-    } else {
-      geometric_[e].drv_dx.setZero();
-      geometric_[e].drp_dx.setZero();
-    }
-  }
-  std::vector<Eigen::Triplet<double>> t;
-  condensed_triplets(mesh, s, geometric_, jacobian_bubbles_, t);
-  jacobian_.resize(num_.node_velocities + num_.pressures, num_.node_velocities + num_.pressures);
-  jacobian_.setFromTriplets(t.begin(), t.end());
-}
-
-void UnifiedStep::factorize_jacobian() {
-  // The symbolic analysis is reused while the pattern stays (a mesh whose connectivity and free
-  // surface did not change since the last factorisation, as in water at rest).
-  const auto same = [](const int* a, const int* b, Eigen::Index n) { return std::equal(a, a + n, b); };
-  const bool same_pattern = lu_analyzed_.rows() == jacobian_.rows() && lu_analyzed_.nonZeros() == jacobian_.nonZeros() &&
-                            same(lu_analyzed_.outerIndexPtr(), jacobian_.outerIndexPtr(), jacobian_.cols() + 1) &&
-                            same(lu_analyzed_.innerIndexPtr(), jacobian_.innerIndexPtr(), jacobian_.nonZeros());
-  if (!same_pattern) {
-    jacobian_solver_.analyze(jacobian_);
-    lu_analyzed_ = jacobian_;
-  }
-  jacobian_solver_.factorize(jacobian_);
-}
-
 void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
-  assemble_jacobian(mesh, s, s.geometric_terms);
+  jacobian_elements(mesh, s, s.geometric_terms);
   const int num_params = static_cast<int>(s.sensitivity.size());
   const int ne = static_cast<int>(mesh.triangles.size());
   const double inv_dt = 1.0 / s.dt;
@@ -142,19 +112,17 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
     for (std::size_t j = 0; j < num_.structure.size(); ++j)
       if (num_.structure[j] >= 0) rv(num_.structure[j], k) += r[j];
   }
-  // Up to kIterativeParameters parameters: GMRES preconditioned by the step's Newton
-  // factorisation, which differs from the Jacobian only by dt H, dt T and the drift of the
-  // iterate (about 5 iterations to 1e-13 on the yielding obstacle; the sensitivities agree with
-  // the LU's to 1e-12). More parameters, or a column that needs more than kGmresIterations:
-  // UMFPACK's LU of the Jacobian and one back-substitution per parameter, and the LU for the
-  // next kLuSteps steps too (a flow where the preconditioner is poor stays poor for a while).
-  // (Only when this step factorised its Newton matrix: a state converged at its first iterate,
-  // as water at rest can be, leaves the previous step's factorisation in place.)
-  bool iterative = num_params <= kIterativeParameters && lu_steps_left_ == 0 && report_.factorizations > 0 &&
+  // Up to kGmresParameters parameters: GMRES on the Jacobian (element by element) preconditioned
+  // by the step's Newton factorisation. More, or a column GMRES does not solve in
+  // kGmresIterations: one LU of the Jacobian for every parameter, a back-substitution each, its
+  // residual against the Jacobian itself, and GMRES preconditioned by the LU on that residual
+  // where it is above kSensitivityTolerance (the LU's pivots perturbed or grown): every solve is
+  // exact to that tolerance either way. (The Newton factorisation is this step's only if the
+  // step factorised: water at rest can converge at its first iterate.)
+  const LinearOperator apply = [&](const Eigen::VectorXd& x) { return jacobian_product(mesh, s, x); };
+  bool iterative = num_params <= kGmresParameters && analyzed_ &&
                    s.formulation == StepSettings::Formulation::kCondensedBubble;
-  if (lu_steps_left_ > 0) --lu_steps_left_;
   if (iterative) {
-    const LinearOperator apply = [this](const Eigen::VectorXd& x) -> Eigen::VectorXd { return jacobian_ * x; };
     const LinearOperator precondition = [this](const Eigen::VectorXd& x) {
       Eigen::VectorXd y = x;
       condensed_solver_.solve(y);
@@ -164,22 +132,42 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
       Eigen::MatrixXd x(b.rows(), b.cols());
       for (long c = 0; c < b.cols() && iterative; ++c) {
         Eigen::VectorXd xc;
-        iterative = gmres(apply, precondition, b.col(c), xc, 1e-13, kGmresIterations, kGmresIterations).converged;
+        iterative = gmres(apply, precondition, b.col(c), xc, kSensitivityTolerance, kGmresIterations, kGmresIterations)
+                        .converged;
         x.col(c) = xc;
       }
       return x;
     };
     solve_condensed(mesh, jacobian_bubbles_, solve, rv, rp, dv_, dp_);
-    if (!iterative) lu_steps_left_ = kLuSteps;
   }
   if (!iterative) {
+    if (!analyzed_) analyze_condensed(mesh, s);
     try {
-      factorize_jacobian();
-    } catch (const std::runtime_error& e) {
+      factorize_jacobian(mesh, s);
+    } catch (const StepFailure& e) {
       throw StepFailure(std::string("sensitivity matrix: ") + e.what());
     }
-    solve_condensed(mesh, jacobian_bubbles_, [this](const Eigen::MatrixXd& b) { return jacobian_solver_.solve(b); },
-                    rv, rp, dv_, dp_);
+    const LinearOperator precondition = [this](const Eigen::VectorXd& x) {
+      Eigen::VectorXd y = x;
+      jacobian_lu_.solve(y);
+      return y;
+    };
+    const CondensedSolve solve = [&](const Eigen::MatrixXd& b) {
+      Eigen::MatrixXd x = b;
+      jacobian_lu_.solve(x);
+      for (long c = 0; c < b.cols(); ++c) {
+        const Eigen::VectorXd r = b.col(c) - apply(x.col(c));
+        if (r.norm() <= kSensitivityTolerance * b.col(c).norm()) continue;
+        Eigen::VectorXd correction;
+        if (!gmres(apply, precondition, r, correction, kSensitivityTolerance * b.col(c).norm() / r.norm(),
+                   kGmresIterations, kGmresIterations)
+                 .converged)
+          throw StepFailure("the sensitivity solve did not converge");
+        x.col(c) += correction;
+      }
+      return x;
+    };
+    solve_condensed(mesh, jacobian_bubbles_, solve, rv, rp, dv_, dp_);
   }
   if (!dv_.allFinite() || !dp_.allFinite()) throw StepFailure("non-finite sensitivities");
 }

@@ -1,30 +1,15 @@
 #include "engine/solve/supernodal_ldlt.h"
 
-#include "engine/solve/supernodal_symbolic.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <stdexcept>
 
-// The BLAS (Fortran interface; the system's libblas.so.3 is OpenBLAS, as for CHOLMOD).
-extern "C" void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
-                       const double* alpha, const double* a, const int* lda, const double* b, const int* ldb,
-                       const double* beta, double* c, const int* ldc, std::size_t transa_len,
-                       std::size_t transb_len);
-extern "C" void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m,
-                       const int* n, const double* alpha, const double* a, const int* lda, double* b, const int* ldb,
-                       std::size_t side_len, std::size_t uplo_len, std::size_t transa_len, std::size_t diag_len);
+#include "engine/solve/blas.h"
 
 namespace pfem {
 namespace {
-
-// c (m x n, leading dimension ldc) = beta c + alpha a b^T, a m x k, b n x k.
-void gemm_nt(int m, int n, int k, double alpha, const double* a, int lda, const double* b, int ldb, double beta,
-             double* c, int ldc) {
-  dgemm_("N", "T", &m, &n, &k, &alpha, a, &lda, b, &ldb, &beta, c, &ldc, 1, 1);
-}
 
 // Supernodes wider than this are factorised a panel of this many columns at a time.
 constexpr int kPanel = 32;
@@ -59,14 +44,13 @@ bool factor_supernode(double* x, int nsrow, int nscol, double* d, double* w) {
       const int nt = nscol - j1, width = j1 - j0;
       for (int j = 0; j < width; ++j)
         for (int i = 0; i < nt; ++i) w[i + j * nt] = x[(j1 + i) + static_cast<long>(j0 + j) * nsrow] * d[j0 + j];
-      gemm_nt(nt, nt, width, -1.0, x + j1 + static_cast<long>(j0) * nsrow, nsrow, w, nt, 1.0,
-              x + j1 + static_cast<long>(j1) * nsrow, nsrow);
+      blas::gemm('N', 'T', nt, nt, width, -1.0, x + j1 + static_cast<long>(j0) * nsrow, nsrow, w, nt, 1.0,
+                 x + j1 + static_cast<long>(j1) * nsrow, nsrow);
     }
   }
   const int m = nsrow - nscol;
   if (wide && m > 0) {
-    const double one = 1.0;
-    dtrsm_("R", "L", "T", "U", &m, &nscol, &one, x, &nsrow, x + nscol, &nsrow, 1, 1, 1, 1);
+    blas::trsm('R', 'L', 'T', 'U', m, nscol, x, nsrow, x + nscol, nsrow);
     for (int j = 0; j < nscol; ++j) {
       const double inv = 1.0 / d[j];
       double* below = x + nscol + static_cast<long>(j) * nsrow;
@@ -78,148 +62,52 @@ bool factor_supernode(double* x, int nsrow, int nscol, double* d, double* w) {
 
 }  // namespace
 
-void SupernodalLdlt::take_structure(SupernodalStructure&& structure) {
-  perm_ = std::move(structure.perm);
-  super_ = std::move(structure.super);
-  pi_ = std::move(structure.pi);
-  px_ = std::move(structure.px);
-  ls_ = std::move(structure.rows);
-  first_trailing_ = structure.first_trailing;
-  n_ = static_cast<int>(perm_.size());
-  nsuper_ = static_cast<int>(super_.size()) - 1;
+void SupernodalLdlt::allocate() {
   lx_.resize(static_cast<std::size_t>(px_[nsuper_]));
-  iperm_.resize(n_);
-  for (int k = 0; k < n_; ++k) iperm_[perm_[k]] = k;
-  super_of_col_.resize(n_);
-  max_rows_ = max_cols_ = 0;
-  for (int k = 0; k < nsuper_; ++k) {
-    std::fill(super_of_col_.begin() + super_[k], super_of_col_.begin() + super_[k + 1], k);
-    max_cols_ = std::max(max_cols_, super_[k + 1] - super_[k]);
-    max_rows_ = std::max(max_rows_, static_cast<int>(pi_[k + 1] - pi_[k]));
-  }
   d_.resize(n_);
-  ws_.local.assign(n_, 0);
-  ws_.relative.assign(max_rows_, 0);
-  ws_.head.assign(nsuper_, -1);
-  ws_.next.assign(nsuper_, -1);
-  ws_.lpos.assign(nsuper_, 0);
-  ws_.update.resize(static_cast<std::size_t>(max_rows_) * max_cols_ + 1);
-  ws_.w.resize(static_cast<std::size_t>(max_cols_) * max_cols_ + 1);
 }
 
-void SupernodalLdlt::analyze(int n, std::span<const int> group, std::span<const std::array<int, 2>> couplings,
-                             std::span<const int> last) {
-  take_structure(supernodal_symbolic(n, group, couplings, last));
-  group_.assign(group.begin(), group.end());
-  last_.assign(last.begin(), last.end());
-  outer_.clear();
-  inner_.clear();
-  entry_src_.clear();
-  entry_dst_.clear();
-}
-
-void SupernodalLdlt::analyze(const SparseMatrix& a, std::span<const int> group, std::span<const int> last) {
-  if (a.rows() != a.cols() || !a.isCompressed())
-    throw std::invalid_argument("SupernodalLdlt needs a square, compressed matrix");
-  const int n = static_cast<int>(a.rows());
-  if (!group.empty() && static_cast<int>(group.size()) != n)
-    throw std::invalid_argument("SupernodalLdlt: one group per unknown");
-  const int* outer = a.outerIndexPtr();
-  const int* inner = a.innerIndexPtr();
-  const auto id = [&group](int k) { return group.empty() ? k : group[k]; };
-  std::vector<std::array<int, 2>> couplings;
-  couplings.reserve(a.nonZeros());
-  for (int j = 0; j < n; ++j)
-    for (int p = outer[j]; p < outer[j + 1]; ++p)
-      if (inner[p] > j) couplings.push_back({id(inner[p]), id(j)});
-  analyze(n, group, couplings, last);
-  outer_.assign(outer, outer + n + 1);
-  inner_.assign(inner, inner + a.nonZeros());
-  // Where each entry of a's lower triangle goes in the factor.
-  for (int j = 0; j < n; ++j)
-    for (int p = outer[j]; p < outer[j + 1]; ++p) {
-      if (inner[p] < j) continue;
-      entry_src_.push_back(p);
-      entry_dst_.push_back(find_position(inner[p], j));
-    }
-}
-
-long SupernodalLdlt::find_position(int row, int col) const {
-  const int pr = iperm_[row], pc = iperm_[col];
-  const int c = std::min(pr, pc), r = std::max(pr, pc);
-  const int k = super_of_col_[c];
-  const int nscol = super_[k + 1] - super_[k], nsrow = static_cast<int>(pi_[k + 1] - pi_[k]);
-  int local = r - super_[k];  // the supernode's own columns come first, in order
-  if (r >= super_[k + 1]) {
-    const int* rows = ls_.data() + pi_[k];
-    const int* found = std::lower_bound(rows + nscol, rows + nsrow, r);
-    if (found == rows + nsrow || *found != r) return -1;
-    local = static_cast<int>(found - rows);
-  }
-  return px_[k] + static_cast<long>(c - super_[k]) * nsrow + local;
+long SupernodalLdlt::entry_destination(int row, int col) const {
+  return row < col ? kNotKept : find_position(row, col);  // the lower triangle
 }
 
 SupernodalLdlt::Block SupernodalLdlt::block(int row0, int col0) const {
   const long position = find_position(row0, col0);
   if (position < 0) throw std::logic_error("SupernodalLdlt::block: the groups were not coupled at analysis");
   const int pr = iperm_[row0], pc = iperm_[col0];
-  const int k = super_of_col_[std::min(pr, pc)];
-  const long nsrow = pi_[k + 1] - pi_[k];
-  return pr >= pc ? Block{position, 1, nsrow} : Block{position, nsrow, 1};
+  const long rows = nsrow(super_of_col_[std::min(pr, pc)]);
+  return pr >= pc ? Block{position, 1, rows} : Block{position, rows, 1};
 }
 
 void SupernodalLdlt::zero_values() { std::fill(lx_.begin(), lx_.end(), 0.0); }
 
-void SupernodalLdlt::apply_update(int d, int s, double* xs) {
-  Workspace& ws = ws_;
-  const int k2 = super_[s + 1], nsrow = static_cast<int>(pi_[s + 1] - pi_[s]);
-  const long pdi = pi_[d], pdend = pi_[d + 1];
-  const int ndrow = static_cast<int>(pdend - pdi), ndcol = super_[d + 1] - super_[d];
-  const long pdi1 = pdi + ws.lpos[d];
-  long pdi2 = pdi1;
-  while (pdi2 < pdend && ls_[pdi2] < k2) ++pdi2;
-  const int ndrow1 = static_cast<int>(pdi2 - pdi1), ndrow2 = static_cast<int>(pdend - pdi1);
-  const std::size_t update_size = static_cast<std::size_t>(ndrow1) * ndrow2;
-  if (update_size > ws.update.size()) ws.update.resize(update_size);
-  // update (ndrow2 x ndrow1) = L_d(rows from pdi1) D_d L_d(rows pdi1..pdi2)^T
-  const double* ld = lx_.data() + px_[d] + (pdi1 - pdi);
+void SupernodalLdlt::update(int d, int s, const UpdateRows& r) {
+  // update (ndrow2 x ndrow1) = L_d(rows from first) D_d L_d(rows first..split)^T, then its lower
+  // triangle subtracted from s at the rows' places.
+  const int ndrow = nsrow(d), ndcol = nscol(d);
+  const int ndrow1 = r.split - r.first, ndrow2 = r.end - r.first, ns = nsrow(s);
+  const double* ld = lx_.data() + px_[d] + r.first;
   const double* dd = d_.data() + super_[d];
-  double* w = ws.w.data();
+  double* w = ws_.w.data();
   for (int j = 0; j < ndcol; ++j)
     for (int i = 0; i < ndrow1; ++i) w[i + j * ndrow1] = ld[i + static_cast<long>(j) * ndrow] * dd[j];
-  gemm_nt(ndrow2, ndrow1, ndcol, 1.0, ld, ndrow, w, ndrow1, 0.0, ws.update.data(), ndrow2);
-  int* relative = ws.relative.data();
-  for (int i = 0; i < ndrow2; ++i) relative[i] = ws.local[ls_[pdi1 + i]];
+  blas::gemm('N', 'T', ndrow2, ndrow1, ndcol, 1.0, ld, ndrow, w, ndrow1, 0.0, ws_.update.data(), ndrow2);
+  const int* relative = ws_.relative.data();
+  double* xs = lx_.data() + px_[s];
   for (int j = 0; j < ndrow1; ++j) {
-    double* col = xs + static_cast<long>(relative[j]) * nsrow;
-    const double* u = ws.update.data() + static_cast<long>(j) * ndrow2;
+    double* col = xs + static_cast<long>(relative[j]) * ns;
+    const double* u = ws_.update.data() + static_cast<long>(j) * ndrow2;
     for (int i = j; i < ndrow2; ++i) col[relative[i]] -= u[i];
-  }
-  // d's next target is the supernode of its first row past s.
-  ws.lpos[d] = static_cast<int>(pdi2 - pdi);
-  if (pdi2 < pdend) {
-    const int target = super_of_col_[ls_[pdi2]];
-    ws.next[d] = ws.head[target];
-    ws.head[target] = d;
   }
 }
 
-void SupernodalLdlt::link(int s) {
-  Workspace& ws = ws_;
-  const int nscol = super_[s + 1] - super_[s];
-  if (pi_[s + 1] - pi_[s] == nscol) return;
-  ws.lpos[s] = nscol;
-  const int target = super_of_col_[ls_[pi_[s] + nscol]];
-  ws.next[s] = ws.head[target];
-  ws.head[target] = s;
+bool SupernodalLdlt::factor(int s) {
+  return factor_supernode(lx_.data() + px_[s], nsrow(s), nscol(s), d_.data() + super_[s], ws_.w.data());
 }
 
 bool SupernodalLdlt::factorize(const SparseMatrix& a) {
   if (!a.isCompressed()) throw std::invalid_argument("SupernodalLdlt needs a compressed matrix");
-  const bool same_pattern = a.rows() == n_ && a.nonZeros() == static_cast<long>(inner_.size()) &&
-                            std::equal(outer_.begin(), outer_.end(), a.outerIndexPtr()) &&
-                            std::equal(inner_.begin(), inner_.end(), a.innerIndexPtr());
-  if (!same_pattern) analyze(a, std::vector<int>(group_), std::vector<int>(last_));
+  if (!same_pattern(a)) analyze(a, std::vector<int>(group_), std::vector<int>(last_));
   zero_values();
   const double* values = a.valuePtr();
   for (std::size_t q = 0; q < entry_src_.size(); ++q) lx_[entry_dst_[q]] = values[entry_src_[q]];
@@ -236,24 +124,6 @@ bool SupernodalLdlt::factorize_values() {
   eliminate(first_trailing_, nsuper_, false);
   trailing_sums_.assign(lx_.begin() + px_[first_trailing_], lx_.end());
   return factorize_trailing({});
-}
-
-bool SupernodalLdlt::eliminate(int first, int last, bool factor) {
-  for (int s = first; s < last; ++s) {
-    const long psi = pi_[s];
-    const int nsrow = static_cast<int>(pi_[s + 1] - psi);
-    double* xs = lx_.data() + px_[s];
-    for (int i = 0; i < nsrow; ++i) ws_.local[ls_[psi + i]] = i;
-    for (int d = ws_.head[s]; d >= 0;) {
-      const int dnext = ws_.next[d];
-      apply_update(d, s, xs);
-      d = dnext;
-    }
-    if (!factor) continue;
-    if (!factor_supernode(xs, nsrow, super_[s + 1] - super_[s], d_.data() + super_[s], ws_.w.data())) return false;
-    link(s);
-  }
-  return true;
 }
 
 bool SupernodalLdlt::factorize_trailing(std::span<const std::pair<long, double>> additions) {

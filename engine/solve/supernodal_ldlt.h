@@ -18,22 +18,13 @@
 #include <utility>
 #include <vector>
 
+#include "engine/solve/supernodal_factor.h"
+
 namespace pfem {
 
-struct SupernodalStructure;
-
-class SupernodalLdlt {
+class SupernodalLdlt : public SupernodalFactor {
  public:
-  using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-
-  // Ordering and supernodal symbolic factorisation of the lower triangle of a (which must be
-  // compressed), on the graph of the groups of unknowns (group[k] of unknown k; empty: each
-  // unknown alone), the groups holding an unknown of `last` ordered after all others.
-  void analyze(const SparseMatrix& a, std::span<const int> group = {}, std::span<const int> last = {});
-  // The same from the couplings between groups (supernodal_symbolic.h), with no matrix: its
-  // entries are then added in place (zero_values, values() at block(), factorize_values).
-  void analyze(int n, std::span<const int> group, std::span<const std::array<int, 2>> couplings,
-               std::span<const int> last = {});
+  // analyze() (supernodal_factor.h) reads the lower triangle of a matrix.
   // Numeric factorisation of a (compressed). A pattern other than the analysed one (the
   // structure's tangent leaves out exact zeros, so it can change within a step) is analysed
   // first, with the same groups and `last`. Returns false on a zero or non-finite pivot (the
@@ -62,43 +53,18 @@ class SupernodalLdlt {
   void solve(Eigen::Ref<Eigen::MatrixXd> b) const;
 
  private:
-  struct Workspace {
-    std::vector<int> local, relative, head, next, lpos;
-    std::vector<double> update, w;
-  };
-  // Subtracts from supernode s (values xs; ws_.local maps its rows to positions) the update of
-  // the factorised supernode d from d's rows at ws_.lpos[d] on, then links d to its next target.
-  void apply_update(int d, int s, double* xs);
-  // Links the factorised supernode s to the first supernode its off-diagonal rows update.
-  void link(int s);
-  // Supernodes first .. last-1 in turn take the updates linked to them and, if `factor`, are
-  // factorised and linked on. False on a zero or non-finite pivot.
-  bool eliminate(int first, int last, bool factor);
-  // Where entry (row, col) of the lower triangle lies in lx_, or -1 if nowhere.
-  long find_position(int row, int col) const;
-  // Member arrays from the symbolic structure; max_rows_, workspaces.
-  void take_structure(SupernodalStructure&& structure);
+  // Subtracts from supernode s the update L_d D_d L_d^T of the factorised supernode d.
+  void update(int d, int s, const UpdateRows& rows) override;
+  bool factor(int s) override;
+  void allocate() override;
+  long entry_destination(int row, int col) const override;
   // The trailing supernodes from their kept sums (a's entries and the leading supernodes'
   // updates) plus the (position, value) additions.
   bool factorize_trailing(std::span<const std::pair<long, double>> additions);
 
-  int n_ = 0;
-  int nsuper_ = 0;
-  std::vector<int> outer_, inner_;  // the analysed pattern
-  std::vector<int> group_, last_;   // as analysed
-  std::vector<int> perm_, iperm_;   // row k of the factor is row perm_[k] of a
-  std::vector<int> super_;          // supernode s holds columns super_[s] .. super_[s+1]-1
-  std::vector<int> super_of_col_;   // the supernode of each column
-  std::vector<long> pi_, px_;       // starts of each supernode's row indices (in ls_) and values (in lx_)
-  std::vector<int> ls_;             // row indices of each supernode, its own columns first
-  std::vector<int> entry_src_;      // a's lower entries (indices into its values) ...
-  std::vector<long> entry_dst_;     // ... and where each goes in lx_
-  int max_rows_ = 0, max_cols_ = 0;
   std::vector<double> lx_;          // supernodal L (unit diagonal implied), column-major blocks
   std::vector<double> d_;           // the diagonal D
-  int first_trailing_ = 0;          // the first supernode holding an unknown of last_ (nsuper_ if none)
   std::vector<double> trailing_sums_;  // lx_ from px_[first_trailing_] on before their factorisation
-  Workspace ws_;
 };
 
 }  // namespace pfem

@@ -90,6 +90,30 @@ TEST(ServiceEvaluate, DdmGradientsAreBitIdenticalToAnInProcessRun) {
   expect_bit_identical(pfem::v1::SENSITIVITY_METHOD_UNSPECIFIED, pfem::SensitivityMethod::kDdm);
 }
 
+// An Evaluate builds its model once: its checks build the run's problem, with the DDM's seeds,
+// and hand it to the engine (RunOptions::prepared), which neither validates nor builds again
+// (prepared_run_test).
+TEST(ServiceEvaluate, TheEngineIsHandedTheProblemTheChecksBuilt) {
+  TempDir dir("evaluate_prepared");
+  auto runs = std::make_shared<std::atomic<int>>(0);
+  auto prepared = std::make_shared<std::atomic<int>>(0);
+  const auto engine = [runs, prepared](const pfem::v1::Model& m, const pfem::RunOptions& o) {
+    ++*runs;
+    if (o.prepared) ++*prepared;
+    return pfem::run(m, o);
+  };
+  pfem::server::Server server(local_options(dir.path), engine);
+  auto stub = make_stub(server.address());
+  for (const auto method : {pfem::v1::SENSITIVITY_METHOD_DDM, pfem::v1::SENSITIVITY_METHOD_NONE}) {
+    grpc::ClientContext context;
+    pfem::v1::EvaluateResponse response;
+    const auto status = stub->Evaluate(&context, tiny_evaluate(method, 1005.0), &response);
+    ASSERT_TRUE(status.ok()) << status.error_message();
+  }
+  EXPECT_EQ(runs->load(), 2);
+  EXPECT_EQ(prepared->load(), 2);
+}
+
 TEST(ServiceEvaluate, RepeatedRequestsHitTheCache) {
   TempDir dir("evaluate_cache");
   FakeEngine engine;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "engine/solve/linear_solvers.h"
+#include "tests/unit/random_rhs.h"
 #include "engine/solve/supernodal_ldlt.h"
 
 namespace pfem {
@@ -65,15 +66,6 @@ SparseMatrix quasi_definite(int nx, int ny, unsigned seed) {
   SparseMatrix a(n, n);
   a.setFromTriplets(t.begin(), t.end());
   return a;
-}
-
-Eigen::MatrixXd random_rhs(int n, int cols, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::MatrixXd b(n, cols);
-  for (int c = 0; c < cols; ++c)
-    for (int i = 0; i < n; ++i) b(i, c) = u(rng);
-  return b;
 }
 
 double relative_difference(const Eigen::MatrixXd& x, const Eigen::MatrixXd& reference) {

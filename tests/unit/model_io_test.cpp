@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/analysis/run.h"
+#include "engine/io/model_checks.h"
 #include "engine/io/model_io.h"
 #include "engine/io/model_size.h"
 
@@ -244,6 +245,19 @@ TEST(ModelValidation, DirectionalParameters) {
     EXPECT_EQ(errors[i].path, expected[i].first);
     EXPECT_NE(errors[i].message.find(expected[i].second), std::string::npos) << errors[i].message;
   }
+}
+
+// What the FDM checks in the models it moves: the parameters' values alone, as validate_model
+// says them when nothing else is wrong.
+TEST(ModelValidation, ParameterValuesAloneAsTheWholeValidationSaysThem) {
+  auto m = valid_model();  // parameters rho_f, mu, kappa
+  m.mutable_parameters(0)->set_value(1010.0);
+  m.mutable_parameters(1)->set_value(-1e-3);
+  m.mutable_parameters(2)->set_value(NAN);
+  EXPECT_TRUE(validate_parameter_values(valid_model()).empty());
+  const auto errors = validate_model(m);
+  ASSERT_EQ(errors.size(), 2u) << describe(errors);
+  EXPECT_EQ(describe(validate_parameter_values(m)), describe(errors));
 }
 
 TEST(ModelValidation, TimeStepLongerThanTheAnalysis) {

@@ -1,6 +1,7 @@
 // The Newton loop's tests on residual histories with known answers: convergence at the
 // tolerance, a stall when a residual is above half the previous one, hopeless when the smallest
-// residual has not halved in the last kStallWindow iterations, and the iteration limit.
+// residual has not halved in the last kStallWindow iterations or, where asked, when a triangle is
+// inverted while the residual stagnates, and the iteration limit.
 #include "engine/solve/newton_monitor.h"
 
 #include <gtest/gtest.h>
@@ -55,6 +56,34 @@ TEST(NewtonMonitor, HopelessWhenTheBestHasNotHalvedInTheWindow) {
   NewtonMonitor cycling(1e-10, 50);
   for (int it = 0; it <= 2 * kWindow; ++it) cycling.record(it <= 5 ? std::pow(0.25, it) : (it % 2 ? 1e-2 : 2e-3));
   EXPECT_TRUE(cycling.hopeless());
+}
+
+TEST(NewtonMonitor, HopelessWhenInvertedAndStagnatingIfAsked) {
+  // A plateau at 1e-3 from iteration 3 on (the best falls 10x over no 3 iterations from then):
+  // hopeless at kInvertedFrom with a triangle inverted there, never without the inversion, never
+  // when not asked to give up so (a step's last retry), and not on an inverted iterate while the
+  // residual still falls 10x in 3 iterations (0.4 a step: 0.064).
+  const auto plateau = [](int it) { return it < 3 ? std::pow(10.0, -it) : 1e-3 * (1.0 + 0.1 * (it % 2)); };
+  NewtonMonitor asked(1e-10, 50, true), unasked(1e-10, 50, false), upright(1e-10, 50, true);
+  for (int it = 0; it <= NewtonMonitor::kInvertedFrom; ++it) {
+    asked.record(plateau(it), it >= 2);
+    unasked.record(plateau(it), it >= 2);
+    upright.record(plateau(it), false);
+    EXPECT_EQ(asked.hopeless(), it == NewtonMonitor::kInvertedFrom) << it;
+    EXPECT_EQ(asked.inverted_and_stagnating(), it == NewtonMonitor::kInvertedFrom) << it;
+    EXPECT_FALSE(unasked.hopeless()) << it;
+    EXPECT_FALSE(upright.hopeless()) << it;
+  }
+  NewtonMonitor converging(1e-10, 50, true);
+  for (int it = 0; it <= 12; ++it) {
+    converging.record(std::pow(0.4, it), true);
+    EXPECT_FALSE(converging.hopeless()) << it;
+  }
+  // The smallest residual so far counts: after a best of 1e-3 at iteration 3, a bounce to 1e-1
+  // that falls tenfold again is no progress.
+  NewtonMonitor bouncing(1e-10, 50, true);
+  for (const double r : {1.0, 1e-1, 1e-2, 1e-3, 1e-1, 1e-2, 2e-3}) bouncing.record(r, true);
+  EXPECT_TRUE(bouncing.hopeless());  // best 1e-3 at iterations 3..6: not 10x lower than at 3
 }
 
 TEST(NewtonMonitor, OutOfIterationsAtTheLimit) {

@@ -377,20 +377,6 @@ TEST(StructureParameters, OneParameterSetsSectionWidthAndThickness) {
                    0.02 * kB);
 }
 
-TEST(StructureParameters, BadTargetsThrowAtTheGivenPath) {
-  auto m = cantilever(true);
-  try {
-    set_model_target(m, "material.wood.e", 1.0, "parameters[0].targets[1]");
-    FAIL() << "no error";
-  } catch (const ModelError& e) {
-    expect_single_error(e.errors(), "parameters[0].targets[1]",
-                        "unknown material 'wood' in target 'material.wood.e'");
-  }
-  EXPECT_THROW(set_model_target(m, "material.soft.fy", 1.0), ModelError);  // elastic: no fy
-  EXPECT_THROW(set_model_target(m, "section.square.area", 1.0), ModelError);
-  EXPECT_THROW(set_model_target(m, "structure.materials[0].E", 1.0), ModelError);
-}
-
 // ---------------------------------------------------------------------------------------------
 // The sloshing-beam example: validates; recorders and parameters resolve against its names.
 
