@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <string>
 
+#include "engine/solve/step_commit.h"
+
 namespace pfem {
 
 namespace {
@@ -25,19 +27,6 @@ double seconds_since(Clock::time_point t0) {
 }
 
 }  // namespace
-
-void UnifiedStep::volume_correction(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
-  element_area_n_.resize(mesh.triangles.size());
-  area_n_ = 0.0;
-  for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
-    element_area_n_[e] = nodes.triangle_area(mesh.triangles[e]);  // the nodes are at t_n
-    area_n_ += element_area_n_[e];
-  }
-  dilatation_ = s.target_area > 0.0 && s.volume_relaxation > 0.0 && area_n_ > 0.0
-                    ? (s.target_area / area_n_ - 1.0) / s.volume_relaxation
-                    : 0.0;
-  source_scale_ = dilatation_ * s.thickness / 3.0;
-}
 
 void UnifiedStep::element_terms(const mesh::FluidMesh& mesh, const StepSettings& s) {
   const int ne = static_cast<int>(mesh.triangles.size());
@@ -107,8 +96,8 @@ void UnifiedStep::residuals(const mesh::FluidMesh& mesh) {
       if (dx >= 0) rv_[dx] += r.rv(2 * a);
       if (dy >= 0) rv_[dy] += r.rv(2 * a + 1);
       rp_[q] += r.rp(a), rp_abs_[q] += r.rp_abs(a), mp_[q] += r.mp;
-      if (dilatation_ != 0.0) {
-        const double source = source_scale_ * element_area_n_[e];  // the dilatation's share of the corner
+      if (volume_.dilatation != 0.0) {
+        const double source = volume_.corner_source(e);  // the dilatation's share of the corner
         rp_[q] += source, rp_abs_[q] += std::abs(source);
       }
     }
@@ -490,16 +479,8 @@ void UnifiedStep::initial_iterate(const mesh::FluidMesh& mesh, const StepSetting
   v_.setZero(num_.velocities);
   bubble_history_.restore(mesh.triangles, static_cast<int>(s.sensitivity.size()), vbn_, dvbn_);
   for (std::size_t e = 0; e < mesh.triangles.size(); ++e) v_.segment<2>(num_.bubble(e)) = vbn_[e];
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (num_.vx[i] >= 0) v_[num_.vx[i]] = vxn_[i];
-    if (num_.vy[i] >= 0) v_[num_.vy[i]] = vyn_[i];
-  }
-  pn_.resize(num_.pressures);
-  for (int q = 0; q < num_.pressures; ++q) {
-    const int i = num_.pressure_node[q];
-    pn_[q] = nodes.pressure(i, mesh.multi_sided(i), num_.pressure_side[q]);
-  }
-  p_ = pn_;
+  gather_velocities(num_, nodes, v_);
+  p_ = pn_ = gather_pressures(num_, mesh, nodes);
 
   structure_.begin(s.structure, num_, s.dt, s.gx, s.gy, nodes, v_);
 }
@@ -573,7 +554,7 @@ void UnifiedStep::commit(const mesh::FluidMesh& mesh, const StepSettings& s, Nod
     nodes.wz[sn[k]] = d >= 0 ? v_[d] : 0.0;
     nodes.rz[sn[k]] += s.dt * nodes.wz[sn[k]];
   }
-  commit_pressures(mesh, nodes);
+  node_pressures(num_, mesh, p_, nodes.size(), nodes.p, nodes.side_p);
   const int num_params = static_cast<int>(s.sensitivity.size());
   if (num_params > 0) commit_sensitivities(mesh, s, nodes);
   if (s.structure.model) s.structure.model->commit();
@@ -581,21 +562,6 @@ void UnifiedStep::commit(const mesh::FluidMesh& mesh, const StepSettings& s, Nod
   const int bubbles = num_.velocities - num_.node_velocities;
   bubble_history_.store(mesh.triangles, v_.tail(bubbles),
                         num_params > 0 ? Eigen::MatrixXd(dv_.bottomRows(bubbles)) : Eigen::MatrixXd());
-}
-
-void UnifiedStep::commit_pressures(const mesh::FluidMesh& mesh, NodeState& nodes) const {
-  // A node's p is the mean of its wet sides' (its one pressure but at wall and beam lines); each
-  // side of a node of several keeps its own, NaN where dry.
-  std::fill(nodes.p.begin(), nodes.p.end(), 0.0);
-  std::fill(nodes.side_p.begin(), nodes.side_p.end(), NodeState::kNoSide);
-  std::vector<int> wet(nodes.size(), 0);
-  for (int q = 0; q < num_.pressures; ++q) {
-    const int i = num_.pressure_node[q];
-    nodes.p[i] = wet[i]++ ? nodes.p[i] + p_[q] : p_[q];
-    if (mesh.multi_sided(i)) nodes.side_p[i * mesh::kMaxPressureSides + num_.pressure_side[q]] = p_[q];
-  }
-  for (std::size_t i = 0; i < nodes.size(); ++i)
-    if (wet[i] > 1) nodes.p[i] /= wet[i];
 }
 
 StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes,
@@ -606,7 +572,7 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
   wall_velocity_ = s.wall_velocity;
   if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
   num_ = number_unknowns(mesh, nodes, s.slip, s.structure.model, s.structure.node);
-  volume_correction(mesh, s, nodes);
+  volume_ = volume_correction(mesh, nodes, s.target_area, s.volume_relaxation, s.thickness);
   report_.velocity_unknowns = num_.velocities;
   report_.pressure_unknowns = num_.pressures;
   initial_iterate(mesh, s, nodes);

@@ -55,6 +55,7 @@
 #include "engine/solve/step_structure.h"
 #include "engine/solve/supernodal_ldlt.h"
 #include "engine/solve/supernodal_lu.h"
+#include "engine/solve/volume_correction.h"
 #include "engine/solve/wall_guard.h"
 #include "engine/structure/structure_model.h"
 
@@ -158,14 +159,10 @@ class UnifiedStep : public StepSolver {
   void newton_correction(const mesh::FluidMesh& mesh, const StepSettings& s, bool first, bool stalled);
   // The converged step to the nodes, the structure and the bubble history.
   void commit(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes);
-  // The converged pressures to the nodes (a node's p, and its sides' at wall and beam lines).
-  void commit_pressures(const mesh::FluidMesh& mesh, NodeState& nodes) const;
   // The condensed factorisation with the structure's part at the current iterate (the fluid's
   // part stays that of the last factorisation), unless that part barely changed; false when it
   // cannot be updated so.
   bool update_structure_tangent();
-  // The volume correction's dilatation for this step, from the mesh's area at t_n.
-  void volume_correction(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
   // Every element's geometry and residual at the current iterate (in parallel).
   void element_terms(const mesh::FluidMesh& mesh, const StepSettings& s);
   // Every element's matrices at the geometry of the last element_terms (once per iterate).
@@ -222,7 +219,6 @@ class UnifiedStep : public StepSolver {
   // (before the structure's own commit).
   void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
   void commit_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes);
-  void commit_pressure_sensitivities(const mesh::FluidMesh& mesh, NodeState& nodes, int num_params) const;
   // Newton corrections from the current residuals with the last factorisation.
   void correct_global_bubble(const StepSettings& s);
   void correct_condensed_bubble(const mesh::FluidMesh& mesh);
@@ -237,9 +233,7 @@ class UnifiedStep : public StepSolver {
   std::vector<std::uint8_t> hits_wall_;           // per node: hits a wall (check_admissible)
   std::vector<WallPiece> walls_;                  // the walls and beams at t_n and t_{n+1} (ditto)
   std::span<const double> wall_velocity_;         // StepSettings::wall_velocity of this step
-  // Volume correction: the dilatation [1/s], the mesh's area at t_n and each element's area there.
-  double dilatation_ = 0.0, area_n_ = 0.0, source_scale_ = 0.0;
-  std::vector<double> element_area_n_;
+  VolumeCorrection volume_;  // the dilatation [1/s], the mesh's area at t_n and each element's there
   std::vector<Eigen::Vector2d> vbn_;                // bubble velocities at t_n (per element)
   BubbleHistory bubble_history_;  // of the last converged step
   // Per iteration.

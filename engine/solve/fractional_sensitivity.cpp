@@ -25,7 +25,7 @@
 #include <string>
 
 #include "engine/solve/fractional_step.h"
-#include "engine/solve/node_pressures.h"
+#include "engine/solve/step_commit.h"
 
 namespace pfem {
 
@@ -43,7 +43,7 @@ void FractionalStep::solve_sensitivities(const mesh::FluidMesh& mesh, const Step
   const int num_params = static_cast<int>(s.sensitivity.size());
   const fluid::FluidConstants incompressible{s.fluid.rho, s.fluid.mu, std::numeric_limits<double>::infinity()};
   const Eigen::MatrixXd source =
-      corner_source_sensitivity(volume_, mesh, nodes, s.thickness, s.sensitivity, s.target_area_sensitivity);
+      corner_source_sensitivity(volume_, mesh, nodes, s.sensitivity, s.target_area_sensitivity);
   Eigen::MatrixXd rv = Eigen::MatrixXd::Zero(num_.velocities, num_params);
   Eigen::MatrixXd rp = Eigen::MatrixXd::Zero(num_.pressures, num_params);
   for (int e = 0; e < static_cast<int>(mesh.triangles.size()); ++e) {
@@ -106,25 +106,8 @@ void FractionalStep::solve_sensitivities(const mesh::FluidMesh& mesh, const Step
 }
 
 void FractionalStep::commit_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const {
-  const int num_params = static_cast<int>(s.sensitivity.size());
-  std::vector<double> mean, sides;
-  for (int k = 0; k < num_params; ++k) {
-    node_pressures(num_, mesh, dp_.col(k), nodes.size(), mean, sides);
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      double* d = nodes.sensitivity(i, k);
-      d[NodeState::kDp] = mean[i];
-      for (int side = 0; side < mesh::kMaxPressureSides; ++side)
-        d[NodeState::kDpSide + side] = sides[i * mesh::kMaxPressureSides + side];
-      const int unknown[2] = {num_.vx[i], num_.vy[i]};
-      if ((unknown[0] < 0 && unknown[1] < 0) || hits_wall_[i]) continue;  // a removed particle keeps its own
-      for (int c = 0; c < 2; ++c) {
-        const double wall =
-            s.wall_velocity_sensitivity.empty() ? 0.0 : s.wall_velocity_sensitivity[(i * num_params + k) * 2 + c];
-        d[NodeState::kDvx + c] = unknown[c] >= 0 ? dv_(unknown[c], k) : wall;
-        d[NodeState::kDx + c] += s.dt * d[NodeState::kDvx + c];
-      }
-    }
-  }
+  commit_pressure_sensitivities(num_, mesh, dp_, nodes);
+  commit_velocity_sensitivities(num_, dv_, hits_wall_, s.wall_velocity_sensitivity, s.dt, nodes);
   structure_.commit_sensitivities(dv_, nodes);
 }
 

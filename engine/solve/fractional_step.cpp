@@ -7,7 +7,7 @@
 #include <string>
 
 #include "engine/solve/newton_monitor.h"
-#include "engine/solve/node_pressures.h"
+#include "engine/solve/step_commit.h"
 
 namespace pfem {
 
@@ -38,7 +38,7 @@ void FractionalStep::begin(const mesh::FluidMesh& mesh, const StepSettings& s, c
   wall_velocity_ = s.wall_velocity;
   num_ = number_unknowns(mesh, nodes, s.slip, s.structure.model, s.structure.node);
   report_.velocity_unknowns = num_.velocities, report_.pressure_unknowns = num_.pressures;
-  volume_ = volume_correction(mesh, nodes, s.target_area, s.volume_relaxation);
+  volume_ = volume_correction(mesh, nodes, s.target_area, s.volume_relaxation, s.thickness);
   v_.setZero(num_.velocities);  // bubbles from rest (fluid/mini_lumped.h)
   gather_velocities(num_, nodes, v_);
   p_ = pn_ = gather_pressures(num_, mesh, nodes);
@@ -76,7 +76,7 @@ void FractionalStep::element_terms(const mesh::FluidMesh& mesh, const StepSettin
   }
 }
 
-void FractionalStep::residuals(const mesh::FluidMesh& mesh, const StepSettings& s) {
+void FractionalStep::residuals(const mesh::FluidMesh& mesh) {
   rv_.setZero(num_.velocities);
   rp_.setZero(num_.pressures);
   rp_terms_.setZero(num_.pressures);
@@ -88,7 +88,7 @@ void FractionalStep::residuals(const mesh::FluidMesh& mesh, const StepSettings& 
     const fluid::ElementState st = element_state(mesh, static_cast<int>(e));
     for (int k = 0; k < 8; ++k)
       if (dof[k] >= 0) rv_[dof[k]] += r.rv(k);
-    const double source = volume_.dilatation == 0.0 ? 0.0 : volume_.corner_source(e, s.thickness);
+    const double source = volume_.dilatation == 0.0 ? 0.0 : volume_.corner_source(e);
     for (int a = 0; a < 3; ++a) {
       const int q = num_.corner_p[e][a];
       const auto gc = mats_[e].Gc.col(a);
@@ -160,7 +160,7 @@ void FractionalStep::iterate(const mesh::FluidMesh& mesh, const StepSettings& s,
     if (cancel && cancel->load(std::memory_order_relaxed)) throw StepCancelled();
     auto t0 = Clock::now();
     element_terms(mesh, s);
-    residuals(mesh, s);
+    residuals(mesh);
     report_.assemble_seconds += seconds_since(t0);
     monitor.record(report_.residual = relative_residual(s));
     const int it = monitor.iteration();

@@ -48,7 +48,7 @@ class FractionalStep final : public StepSolver {
   void iterate(const mesh::FluidMesh& mesh, const StepSettings& s, const std::atomic<bool>* cancel);
   void element_terms(const mesh::FluidMesh& mesh, const StepSettings& s);
   fluid::ElementState element_state(const mesh::FluidMesh& mesh, int e) const;
-  void residuals(const mesh::FluidMesh& mesh, const StepSettings& s);
+  void residuals(const mesh::FluidMesh& mesh);
   double relative_residual(const StepSettings& s) const;
   double velocity(int i, int c) const;  // node i's x (c = 0) or y velocity at the iterate
   void check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);

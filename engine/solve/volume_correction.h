@@ -19,21 +19,20 @@ struct VolumeCorrection {
   double dilatation = 0.0;           // s; 0 without a correction
   double area = 0.0;                 // A_n
   std::vector<double> element_area;  // A_e at t_n
-  double target = 0.0, relaxation = 0.0;
+  double target = 0.0, relaxation = 0.0, thickness = 0.0;
 
   // What each corner of element e adds to its mass balance.
-  double corner_source(std::size_t e, double thickness) const { return dilatation * thickness * element_area[e] / 3.0; }
+  double corner_source(std::size_t e) const { return dilatation * thickness / 3.0 * element_area[e]; }
 };
 
 // nodes at t_n; target_area or relaxation 0: no correction.
 VolumeCorrection volume_correction(const mesh::FluidMesh& mesh, const NodeState& nodes, double target_area,
-                                   double relaxation);
+                                   double relaxation, double thickness);
 
 // d corner_source(e) / d theta_k: rows per element, a column per parameter (nodes at t_n with
 // their position sensitivities; target_sensitivity per parameter, empty when none moves it).
 Eigen::MatrixXd corner_source_sensitivity(const VolumeCorrection& c, const mesh::FluidMesh& mesh,
-                                          const NodeState& nodes, double thickness,
-                                          std::span<const fluid::FluidSeed> seeds,
+                                          const NodeState& nodes, std::span<const fluid::FluidSeed> seeds,
                                           std::span<const double> target_sensitivity);
 
 }  // namespace pfem
