@@ -268,6 +268,10 @@ class UnifiedStep : public StepSolver {
   std::vector<std::array<SupernodalLu::Block, 9>> lu_blocks_;
   bool analyzed_ = false;  // this step's mesh analysed (analyze_condensed)
   bool lu_layout_ready_ = false;
+  // Steps left on which the DDM takes the LU without trying GMRES first: a flow where the
+  // Newton factorisation preconditions the Jacobian poorly stays so for a while (kept in a
+  // checkpoint: the two paths agree only to the solve's tolerance).
+  int lu_steps_left_ = 0;
 };
 
 }  // namespace pfem

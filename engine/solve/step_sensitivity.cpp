@@ -29,6 +29,9 @@ constexpr int kGmresIterations = 15;
 // yielding obstacle to 0.3 s: the LU's fixed part 0.5 of the response and 6 % a parameter
 // against 0.15 and 20 %).
 constexpr int kGmresParameters = 2;
+// After a column GMRES did not solve, the steps that take the LU at once (the wave flume's
+// moving paddle: GMRES failed on most steps, and trying first cost 0.6 of a response).
+constexpr int kLuSteps = 50;
 }  // namespace
 
 void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
@@ -97,14 +100,15 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
   }
   // Up to kGmresParameters parameters: GMRES on the Jacobian (element by element) preconditioned
   // by the step's Newton factorisation. More, or a column GMRES does not solve in
-  // kGmresIterations: one LU of the Jacobian for every parameter, a back-substitution each, its
+  // kGmresIterations (then also on the next kLuSteps steps): one LU of the Jacobian for every parameter, a back-substitution each, its
   // residual against the Jacobian itself, and GMRES preconditioned by the LU on that residual
   // where it is above kSensitivityTolerance (the LU's pivots perturbed or grown): every solve is
   // exact to that tolerance either way. (The Newton factorisation is this step's only if the
   // step factorised: water at rest can converge at its first iterate.)
   const LinearOperator apply = [&](const Eigen::VectorXd& x) { return jacobian_product(mesh, s, x); };
-  bool iterative = num_params <= kGmresParameters && analyzed_ &&
+  bool iterative = num_params <= kGmresParameters && lu_steps_left_ == 0 && analyzed_ &&
                    s.formulation == StepSettings::Formulation::kCondensedBubble;
+  if (lu_steps_left_ > 0) --lu_steps_left_;
   if (iterative) {
     const LinearOperator precondition = [this](const Eigen::VectorXd& x) {
       Eigen::VectorXd y = x;
@@ -122,6 +126,7 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
       return x;
     };
     solve_condensed(mesh, jacobian_bubbles_, solve, rv, rp, dv_, dp_);
+    if (!iterative) lu_steps_left_ = kLuSteps;
   }
   if (!iterative) {
     if (!analyzed_) analyze_condensed(mesh, s);
