@@ -31,12 +31,12 @@ Eigen::MatrixXd transpose_product(const SparseMatrix& g, const Eigen::MatrixXd& 
 
 void FractionalOperators::build(const mesh::FluidMesh& mesh, const StepNumbering& num,
                                 std::span<const fluid::MiniMatrices> mats, std::span<const fluid::Vec8> lumped,
-                                const StepStructure& structure, double dt, bool viscous_predictor, bool analyze) {
-  num_ = &num, dt_ = dt, viscous_ = viscous_predictor;
+                                const StepStructure& structure, double dt, bool analyze) {
+  num_ = &num, dt_ = dt;
   if (analyze) predictor_analyzed_ = false;
   assemble_mass(mesh, mats, lumped, structure);
   assemble_poisson(mesh, mats, analyze);
-  if (viscous_) assemble_predictor(mesh, mats, !predictor_analyzed_);
+  assemble_predictor(mesh, mats, !predictor_analyzed_);
 }
 
 void FractionalOperators::assemble_mass(const mesh::FluidMesh& mesh, std::span<const fluid::MiniMatrices> mats,
@@ -145,23 +145,12 @@ void FractionalOperators::assemble_predictor(const mesh::FluidMesh& mesh, std::s
     throw std::runtime_error("the velocity predictor's matrix could not be factorised");
 }
 
-void FractionalOperators::apply_lumped_inverse(Eigen::Ref<Eigen::MatrixXd> b) const {
-  b.topRows(first_structure_).array().colwise() /= node_mass_.array();
-  const Eigen::Index ns = b.rows() - first_structure_;
-  if (ns > 0) b.bottomRows(ns) = structure_block_.solve(Eigen::MatrixXd(b.bottomRows(ns)));
-}
-
 void FractionalOperators::solve(const Eigen::MatrixXd& rv, const Eigen::MatrixXd& rp, Eigen::MatrixXd& dv,
                                 Eigen::MatrixXd& dp) const {
   const int nv = num_->node_velocities;
   Eigen::MatrixXd predicted(rv.rows(), rv.cols());  // step 1
-  if (viscous_ && nv > 0) {
-    predicted.topRows(nv) = rv.topRows(nv);
-    predictor_.solve(predicted.topRows(nv));
-  } else {
-    predicted.topRows(nv) = rv.topRows(nv);
-    apply_lumped_inverse(predicted.topRows(nv));
-  }
+  predicted.topRows(nv) = rv.topRows(nv);
+  if (nv > 0) predictor_.solve(predicted.topRows(nv));
   for (std::size_t e = 0; e < bubble_inverse_.size(); ++e) {
     const int b = num_->bubble(static_cast<int>(e));
     predicted.middleRows<2>(b) = bubble_inverse_[e] * rv.middleRows<2>(b);

@@ -9,7 +9,7 @@
 // (2 x 2) and the structure's M/dt + C + dt K_T with its nodes' lumped fluid mass, and Kv the
 // viscous matrix between corner velocities:
 //  1. velocity predictor dv* = (A + Kv)^-1 rv, fluid and structure in one sparse SPD system
-//     (supernodal LDL^T), or dv* = A^-1 rv with Kv left out;
+//     (supernodal LDL^T);
 //  2. pressure Poisson equation (G^T A^-1 G) dp = rp - G^T dv* (SPD, supernodal LDL^T). A^-1
 //     is diagonal but on the
 //     structure's unknowns, where it is exact (a dense block on their few unknowns): the
@@ -45,8 +45,7 @@ class FractionalOperators {
   // patterns depend on nothing else). Throws std::runtime_error when the predictor, the
   // structure's block or the Poisson matrix cannot be factorised.
   void build(const mesh::FluidMesh& mesh, const StepNumbering& num, std::span<const fluid::MiniMatrices> mats,
-             std::span<const fluid::Vec8> lumped, const StepStructure& structure, double dt, bool viscous_predictor,
-             bool analyze);
+             std::span<const fluid::Vec8> lumped, const StepStructure& structure, double dt, bool analyze);
   // The three steps for each column of (rv, rp): velocity rows of every unknown (bubbles
   // included), pressure rows.
   void solve(const Eigen::MatrixXd& rv, const Eigen::MatrixXd& rp, Eigen::MatrixXd& dv, Eigen::MatrixXd& dp) const;
@@ -57,8 +56,6 @@ class FractionalOperators {
                          Eigen::VectorXd& dp) const;
 
  private:
-  // A's fluid and structure part (no Kv) applied inversely to the node rows of b, in place.
-  void apply_lumped_inverse(Eigen::Ref<Eigen::MatrixXd> b) const;
   // node_mass_ (with the structure block) and bubble_inverse_.
   void assemble_mass(const mesh::FluidMesh& mesh, std::span<const fluid::MiniMatrices> mats,
                      std::span<const fluid::Vec8> lumped, const StepStructure& structure);
@@ -70,7 +67,6 @@ class FractionalOperators {
 
   const StepNumbering* num_ = nullptr;
   double dt_ = 0.0;
-  bool viscous_ = false;
   int first_structure_ = 0;    // the structure's unknowns are the node unknowns from here on
   Eigen::VectorXd node_mass_;  // per node unknown before first_structure_: lumped mass / dt
   std::vector<Eigen::Matrix2d> bubble_block_, bubble_inverse_;  // per triangle: M_44/dt + K_44, its inverse

@@ -35,8 +35,7 @@ void FractionalStep::solve_sensitivities(const mesh::FluidMesh& mesh, const Step
   try {
     // The response's last build had the same mesh and numbering (a state converged at its first
     // iterate, as water at rest can be, built nothing this step).
-    operators_.build(mesh, num_, mats_, lumped_, structure_, s.dt, /*viscous_predictor=*/true,
-                     report_.factorizations == 0);
+    operators_.build(mesh, num_, mats_, lumped_, structure_, s.dt, report_.factorizations == 0);
   } catch (const std::runtime_error& e) {
     throw StepFailure(std::string("sensitivity: ") + e.what());
   }

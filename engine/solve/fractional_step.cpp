@@ -177,7 +177,7 @@ void FractionalStep::iterate(const mesh::FluidMesh& mesh, const StepSettings& s,
     if (it == 0 || monitor.stalled()) {
       t0 = Clock::now();
       try {
-        operators_.build(mesh, num_, mats_, lumped_, structure_, s.dt, /*viscous_predictor=*/true, it == 0);
+        operators_.build(mesh, num_, mats_, lumped_, structure_, s.dt, it == 0);
       } catch (const std::runtime_error& e) {
         throw StepFailure(e.what());
       }
