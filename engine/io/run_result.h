@@ -47,7 +47,7 @@ struct RunSummary {
   double fluid_area_final = 0.0;
   double fluid_area_left = 0.0;  // A_left: the mesh area the particles that left the domain held
   // "none", "ddm", "fdm", or "ddm-approximate" (the DDM of analysis.formulation "incompressible":
-  // H, T and K from the previous step, docs/theory.md §8).
+  // H and T from the previous step, one pass of the fractional step, docs/theory.md §8).
   std::string sensitivity_method;
   std::vector<std::string> parameters;  // names differentiated
   std::vector<double> parameter_values;

@@ -13,11 +13,12 @@
 // traction free weakly), the structure's rows and tangent, the wall guard, the remeshing.
 //
 // Its DDM is the approximation the paper compares against (Zhu & Scott 2017, §3-§5; their
-// earlier DDM of the incompressible PFEM): the sensitivity equations are solved by the same
-// fractional step, whose left-hand side holds the lumped mass and the structure but not the
-// viscous K nor the geometric terms dt H, dt T (nor Gc - G); those parts of the exact Jacobian
-// act on the previous step's velocity sensitivities on the right-hand side instead of this
-// step's. The runs label it "ddm-approximate"; the quasi-incompressible DDM is exact.
+// earlier DDM of the incompressible PFEM): the sensitivity equations are solved by one pass of
+// the same fractional step, whose left-hand side holds the lumped mass, the structure and (in
+// the velocity predictor only) the viscous K, but not the geometric terms dt H, dt T (nor
+// Gc - G): those parts of the exact Jacobian act on the previous step's velocity sensitivities
+// on the right-hand side instead of this step's (fractional_sensitivity.cpp). The runs label it
+// "ddm-approximate"; the quasi-incompressible DDM is exact.
 #include <atomic>
 #include <cstdint>
 #include <vector>
