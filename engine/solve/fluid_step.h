@@ -135,7 +135,8 @@ class UnifiedStep {
   // The report of the last call, also when it threw (the work of a failed attempt).
   const StepReport& last_report() const { return report_; }
   // Saves or restores what one step hands to the next (the bubble velocities and their
-  // sensitivities by triangle) for a checkpoint; between steps only.
+  // sensitivities by triangle, the DDM's steps left on its LU) for a checkpoint; between steps
+  // only.
   void archive(StateArchive& a);
 
  private:

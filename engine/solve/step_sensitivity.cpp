@@ -22,7 +22,7 @@ constexpr int kGmresIterations = 15;
 // against 0.15 and 20 %).
 constexpr int kGmresParameters = 2;
 // After a column GMRES did not solve, the steps that take the LU at once (the wave flume's
-// moving paddle: GMRES failed on most steps, and trying first cost 0.6 of a response).
+// moving paddle: GMRES failed on most steps, and trying it first cost 0.7 of a response).
 constexpr int kLuSteps = 50;
 }  // namespace
 
@@ -125,9 +125,9 @@ void StepSensitivity::solve(const ConvergedStep& c, const NodeState& nodes) {
   // Up to kGmresParameters parameters: GMRES on the Jacobian (element by element) preconditioned
   // by the step's Newton factorisation. More, or a column GMRES does not solve in
   // kGmresIterations (then also on the next kLuSteps steps): one LU of the Jacobian for every
-  // parameter, a back-substitution each, its residual against the Jacobian itself, and GMRES preconditioned by the LU on that residual
-  // where it is above kSensitivityTolerance (the LU's pivots perturbed or grown): every solve is
-  // exact to that tolerance either way.
+  // parameter, a back-substitution each, its residual against the Jacobian itself, and GMRES
+  // preconditioned by the LU on that residual where it is above kSensitivityTolerance (the LU's
+  // pivots perturbed or grown): every solve is exact to that tolerance either way.
   const LinearOperator apply = [&](const Eigen::VectorXd& x) { return jacobian_.product(c, x); };
   bool iterative = num_params <= kGmresParameters && lu_steps_left_ == 0 && c.newton_factorized;
   if (lu_steps_left_ > 0) --lu_steps_left_;
