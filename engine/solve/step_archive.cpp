@@ -6,7 +6,7 @@ namespace pfem {
 
 void UnifiedStep::archive(StateArchive& a) {
   bubble_history_.archive(a);
-  a(lu_steps_left_);
+  sensitivity_.archive(a);
 }
 
 }  // namespace pfem

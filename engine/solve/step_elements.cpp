@@ -1,0 +1,132 @@
+#include "engine/solve/step_elements.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include "engine/solve/fluid_step.h"
+
+namespace pfem {
+
+void StepElements::begin(const mesh::FluidMesh& mesh, const StepSettings& s, const StepNumbering& num,
+                         const NodeState& nodes, std::vector<Eigen::Vector2d> bubbles_n) {
+  mesh_ = &mesh, s_ = &s, num_ = &num;
+  xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy;
+  vbn_ = std::move(bubbles_n);
+  pn_.resize(num.pressures);
+  for (int q = 0; q < num.pressures; ++q) {
+    const int i = num.pressure_node[q];
+    pn_[q] = nodes.pressure(i, mesh.multi_sided(i), num.pressure_side[q]);
+  }
+  volume_correction(nodes);
+}
+
+void StepElements::volume_correction(const NodeState& nodes) {
+  const mesh::FluidMesh& mesh = *mesh_;
+  const StepSettings& s = *s_;
+  element_area_n_.resize(mesh.triangles.size());
+  area_n_ = 0.0;
+  for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
+    element_area_n_[e] = nodes.triangle_area(mesh.triangles[e]);  // the nodes are at t_n
+    area_n_ += element_area_n_[e];
+  }
+  dilatation_ = s.target_area > 0.0 && s.volume_relaxation > 0.0 && area_n_ > 0.0
+                    ? (s.target_area / area_n_ - 1.0) / s.volume_relaxation
+                    : 0.0;
+  source_scale_ = dilatation_ * s.thickness / 3.0;
+}
+
+void StepElements::update(const Eigen::VectorXd& v, const Eigen::VectorXd& p) {
+  const mesh::FluidMesh& mesh = *mesh_;
+  const StepSettings& s = *s_;
+  const int ne = static_cast<int>(mesh.triangles.size());
+  geometries_.resize(ne);
+  element_residuals_.resize(ne);
+  matrices_current_ = false;
+#pragma omp parallel for schedule(static) num_threads(s.threads)
+  for (int e = 0; e < ne; ++e) {
+    std::array<double, 3> x, y, xn, yn;
+    for (int a = 0; a < 3; ++a) {
+      const int i = mesh.triangles[e][a];
+      xn[a] = xn_[i], yn[a] = yn_[i];
+      x[a] = xn_[i] + s.dt * velocity_x(i, v);
+      y[a] = yn_[i] + s.dt * velocity_y(i, v);
+    }
+    geometries_[e] = fluid::triangle_geometry(x, y);
+    fluid::continuity_at_midpoint(geometries_[e], xn, yn);
+    element_residuals_[e] =
+        fluid::element_residual(geometries_[e], s.fluid, s.thickness, s.gx, s.gy, s.dt, state(e, v, p));
+  }
+}
+
+const std::vector<fluid::MiniMatrices>& StepElements::matrices() const {
+  if (matrices_current_) return mats_;
+  const StepSettings& s = *s_;
+  const int ne = static_cast<int>(geometries_.size());
+  mats_.resize(ne);
+#pragma omp parallel for schedule(static) num_threads(s.threads)
+  for (int e = 0; e < ne; ++e) fluid::mini_matrices(geometries_[e], s.fluid, s.thickness, s.gx, s.gy, mats_[e]);
+  matrices_current_ = true;
+  return mats_;
+}
+
+fluid::ElementState StepElements::state(int e, const Eigen::VectorXd& v, const Eigen::VectorXd& p) const {
+  const StepNumbering& num = *num_;
+  fluid::ElementState st;
+  const auto& tri = mesh_->triangles[e];
+  for (int a = 0; a < 3; ++a) {
+    const int i = tri[a], q = num.corner_p[e][a];
+    st.v(2 * a) = velocity_x(i, v);
+    st.v(2 * a + 1) = velocity_y(i, v);
+    st.vn(2 * a) = vxn_[i];
+    st.vn(2 * a + 1) = vyn_[i];
+    st.p(a) = p[q];
+    st.pn(a) = pn_[q];
+  }
+  const int b = num.bubble(e);
+  st.v(6) = v[b], st.v(7) = v[b + 1];
+  st.vn.tail<2>() = vbn_[e];
+  return st;
+}
+
+double StepElements::wall_velocity(int i, int c) const {
+  return s_->wall_velocity.empty() ? 0.0 : s_->wall_velocity[2 * static_cast<std::size_t>(i) + c];
+}
+double StepElements::velocity_x(int i, const Eigen::VectorXd& v) const {
+  return num_->vx[i] >= 0 ? v[num_->vx[i]] : wall_velocity(i, 0);
+}
+double StepElements::velocity_y(int i, const Eigen::VectorXd& v) const {
+  return num_->vy[i] >= 0 ? v[num_->vy[i]] : wall_velocity(i, 1);
+}
+
+void StepElements::assemble(StepResidual& r) const {
+  const StepNumbering& num = *num_;
+  r.rv.setZero(num.velocities);
+  r.rp.setZero(num.pressures);
+  r.rp_abs.setZero(num.pressures);
+  r.mp.setZero(num.pressures);
+  const int ne = static_cast<int>(mesh_->triangles.size());
+  for (int e = 0; e < ne; ++e) {
+    const auto& re = element_residuals_[e];
+    const auto& tri = mesh_->triangles[e];
+    for (int a = 0; a < 3; ++a) {
+      const int i = tri[a], dx = num.vx[i], dy = num.vy[i], q = num.corner_p[e][a];
+      if (dx >= 0) r.rv[dx] += re.rv(2 * a);
+      if (dy >= 0) r.rv[dy] += re.rv(2 * a + 1);
+      r.rp[q] += re.rp(a), r.rp_abs[q] += re.rp_abs(a), r.mp[q] += re.mp;
+      if (dilatation_ != 0.0) {
+        const double source = source_scale_ * element_area_n_[e];  // the dilatation's share of the corner
+        r.rp[q] += source, r.rp_abs[q] += std::abs(source);
+      }
+    }
+    const int b = num.bubble(e);
+    r.rv[b] += re.rv(6), r.rv[b + 1] += re.rv(7);
+  }
+}
+
+bool StepElements::any_inverted() const {
+  return std::any_of(geometries_.begin(), geometries_.end(), [](const fluid::TriangleGeometry& g) { return !(g.A > 0.0); });
+}
+
+}  // namespace pfem

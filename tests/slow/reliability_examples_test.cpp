@@ -1,0 +1,69 @@
+// FORM on the model examples in examples/reliability/, in-process with DDM gradients: each
+// converges on its limit state, and a fresh simulation at the design point lies on it (README,
+// "Reliability of a PFEM model").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "clients/reliability/analysis.h"
+#include "clients/reliability/model_limit_state.h"
+#include "clients/reliability/problem_io.h"
+
+namespace rel = pfem::reliability;
+
+namespace {
+struct Form {
+  std::unique_ptr<rel::LimitState> g;
+  rel::AnalysisResult r;
+};
+
+// Runs the example's FORM and checks what holds for every model limit state with DDM: it
+// converged, one simulation per evaluation, and g = 0 at the design point by a fresh run (to
+// 0.1 % of the threshold).
+Form converged_form(const std::string& example, double threshold) {
+  const rel::Problem p =
+      rel::build_problem(rel::read_problem_file(std::string(PFEM_SOURCE_DIR) + "/examples/reliability/" + example));
+  Form f{rel::make_limit_state(p, rel::EvaluatorOptions{}), {}};
+  f.r = rel::analyze(p, *f.g, rel::analysis_options(p));
+  std::printf("%s: beta %.5f pf %.4e x* = (%.6g, %.6g), %d iterations, %lld simulations, %.0f s\n", example.c_str(),
+              f.r.form.beta, f.r.form.pf, f.r.form.x(0), f.r.form.x(1), f.r.form.iterations,
+              f.r.simulations->simulations, f.r.wall_seconds);
+  EXPECT_TRUE(f.r.form.converged) << f.r.form.message;
+  const std::vector<double> x_star(f.r.form.x.data(), f.r.form.x.data() + f.r.form.x.size());
+  EXPECT_LT(std::abs(f.g->evaluate(x_star, {})), 1e-3 * threshold);
+  EXPECT_EQ(f.r.simulations->simulations, f.r.form.evaluations);
+  return f;
+}
+}  // namespace
+
+// The paper's yielding obstacle to 0.3 s, E and Fy lognormal, g = 0.075 m - max |tip_ux|. About
+// 5 simulations of ~8 s each.
+TEST(ReliabilityExamples, ObstacleFormWithDdmConverges) {
+  const Form f = converged_form("dam-break-obstacle.json", 0.075);
+  // beta moves with the engine's physics and remeshing rules (at 72 mm: 3.647 through the server
+  // in session 2, 3.600 after the boundary alpha, 3.379 with the interior insertion length, 3.359
+  // with the structure's tangent at every iterate; the obstacle's own weight then raised its
+  // deflection by ~5 mm, and the threshold to 75 mm gives 2.772; the volume correction takes out
+  // the +1.2 % of water the column's front had gained by 0.2 s, the peak at the mean values goes
+  // 71.8 -> 71.4 mm and beta to 3.233): a band, not a reference value.
+  EXPECT_NEAR(f.r.form.beta, 3.23, 0.2);
+  // The yield stress drives the peak deflection: a weaker obstacle at the design point.
+  EXPECT_LT(f.r.form.x(1), 5e4);
+  EXPECT_GT(std::abs(f.r.form.alpha(1)), std::abs(f.r.form.alpha(0)));
+}
+
+// The closed wave flume to 3 s, the stroke S and the plate's E lognormal, g = 3.2 mm - max
+// |tip_ux| over 2 <= t <= 3 s. About 10 simulations of ~12 s each.
+TEST(ReliabilityExamples, WaveFlumeFormWithDdmConverges) {
+  const Form f = converged_form("wave-flume.json", 0.0032);
+  // Central-FDM gradients (the client's, eps 1e-7) took the search to beta 1.548 as well; the
+  // band allows for the engine's remeshing rules, as above.
+  EXPECT_NEAR(f.r.form.beta, 1.55, 0.15);
+  // Failure needs bigger waves and a softer plate.
+  EXPECT_GT(f.r.form.x(0), 0.02);
+  EXPECT_LT(f.r.form.x(1), 5e7);
+}
