@@ -160,8 +160,6 @@ class UnifiedStep : public StepSolver {
   void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
   // The converged step to the nodes, the structure and the bubble history.
   void commit(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes);
-  // The converged pressures to the nodes (a node's p, and its sides' at wall and beam lines).
-  void commit_pressures(const mesh::FluidMesh& mesh, NodeState& nodes) const;
 
   // Per step.
   StepReport report_;
