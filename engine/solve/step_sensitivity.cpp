@@ -25,6 +25,16 @@ constexpr int kGmresParameters = 2;
 // After a column GMRES did not solve, the steps that take the LU at once (the wave flume's
 // moving paddle: GMRES failed on most steps, and trying it first cost 0.7 of a response).
 constexpr int kLuSteps = 50;
+
+// x -> A^-1 x by a factorisation of A (a preconditioner for GMRES).
+template <class Factorisation>
+LinearOperator solve_by(const Factorisation& f) {
+  return [&f](const Eigen::VectorXd& x) {
+    Eigen::VectorXd y = x;
+    f.solve(y);
+    return y;
+  };
+}
 }  // namespace
 
 void StepSensitivity::right_hand_sides(const ConvergedStep& c, const NodeState& nodes, Eigen::MatrixXd& rv,
@@ -133,11 +143,7 @@ void StepSensitivity::solve(const ConvergedStep& c, const NodeState& nodes) {
   bool iterative = num_params <= kGmresParameters && lu_steps_left_ == 0 && c.newton_factorized;
   if (lu_steps_left_ > 0) --lu_steps_left_;
   if (iterative) {
-    const LinearOperator precondition = [&c](const Eigen::VectorXd& x) {
-      Eigen::VectorXd y = x;
-      c.condensed.factor().solve(y);
-      return y;
-    };
+    const LinearOperator precondition = solve_by(c.condensed.factor());
     const CondensedSolve solve = [&](const Eigen::MatrixXd& b) {
       Eigen::MatrixXd x(b.rows(), b.cols());
       for (long col = 0; col < b.cols() && iterative; ++col) {
@@ -159,11 +165,7 @@ void StepSensitivity::solve(const ConvergedStep& c, const NodeState& nodes) {
       throw StepFailure(std::string("sensitivity matrix: ") + e.what());
     }
     const SupernodalLu& lu = jacobian_.lu();
-    const LinearOperator precondition = [&lu](const Eigen::VectorXd& x) {
-      Eigen::VectorXd y = x;
-      lu.solve(y);
-      return y;
-    };
+    const LinearOperator precondition = solve_by(lu);
     const CondensedSolve solve = [&](const Eigen::MatrixXd& b) {
       Eigen::MatrixXd x = b;
       lu.solve(x);
