@@ -52,26 +52,12 @@ void StepSensitivity::right_hand_sides(const ConvergedStep& c, const NodeState& 
   Eigen::Matrix<double, 6, 1> dxn;
   fluid::Vec8 dvn;
   fluid::Vec3 dpn;
-  // The volume correction's dilatation (target / A_n - 1) / relaxation depends on the parameter
-  // through the mesh's area at t_n and through the target (the initial area less the water in
-  // flight or gone, analysis/water_account.h); each corner's source dilatation * thickness *
-  // A_e / 3 through it and A_e.
-  // (At this point the nodes are still at t_n.)
-  const double dilatation = c.elements.dilatation(), area_n = c.elements.area_n();
-  const std::vector<double>& element_area_n = c.elements.element_area_n();
-  std::vector<double> darea_e;
-  Eigen::VectorXd ddilatation = Eigen::VectorXd::Zero(num_params);
-  if (dilatation != 0.0) {
-    darea_e.assign(static_cast<std::size_t>(ne) * num_params, 0.0);
-    for (int e = 0; e < ne; ++e)
-      for (int k = 0; k < num_params; ++k) {
-        darea_e[static_cast<std::size_t>(e) * num_params + k] = nodes.triangle_area_sensitivity(mesh.triangles[e], k);
-        ddilatation(k) += darea_e[static_cast<std::size_t>(e) * num_params + k];
-      }
-    ddilatation *= -s.target_area / (area_n * area_n * s.volume_relaxation);
-    for (int k = 0; k < num_params && !s.target_area_sensitivity.empty(); ++k)
-      ddilatation(k) += s.target_area_sensitivity[k] / (area_n * s.volume_relaxation);
-  }
+  // The volume correction's corner sources depend on the parameter through the mesh's area at
+  // t_n, each element's area and the target (the initial area less the water in flight or gone,
+  // analysis/water_account.h). At this point the nodes are still at t_n.
+  const VolumeCorrection& volume = c.elements.volume();
+  const Eigen::MatrixXd dsource =
+      corner_source_sensitivity(volume, mesh, nodes, s.sensitivity, s.target_area_sensitivity);
   for (int e = 0; e < ne; ++e) {
     const auto& m = mats[e];
     const auto& tri = mesh.triangles[e];
@@ -107,11 +93,7 @@ void StepSensitivity::right_hand_sides(const ConvergedStep& c, const NodeState& 
         sv -= a_e.col(col) * w;
         sp -= q_e.col(col) * w;
       }
-      if (dilatation != 0.0) {
-        const double da = darea_e[static_cast<std::size_t>(e) * num_params + k];
-        sp.array() += s.sensitivity[k].thickness * dilatation * element_area_n[e] / 3.0 +
-                      s.thickness / 3.0 * (ddilatation(k) * element_area_n[e] + dilatation * da);
-      }
+      if (volume.dilatation != 0.0) sp.array() += dsource(e, k);
       for (int a = 0; a < 3; ++a) {
         const int i = tri[a], dx = num.vx[i], dy = num.vy[i];
         if (dx >= 0) rv(dx, k) += sv(2 * a);
