@@ -8,12 +8,13 @@
 #include <set>
 
 #include "engine/analysis/blas_threads.h"
-#include "engine/base/assert.h"
 #include "engine/analysis/simulation.h"
+#include "engine/base/assert.h"
 #include "engine/io/model_builder.h"
 #include "engine/io/model_checks.h"
 #include "engine/io/model_io.h"
 #include "engine/io/model_size.h"
+#include "engine/io/model_warnings.h"
 
 namespace pfem {
 
@@ -199,7 +200,11 @@ RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
   result.responses = std::move(sim.responses);
   result.sensitivities = std::move(sim.sensitivities);
   result.summary = sim.summary;
-  result.summary.sensitivity_method = method_name(options.sensitivity);
+  if (auto ignored = ignored_bulk_modulus(model)) result.summary.warnings.push_back(ignored->to_string());
+  // The incompressible formulation's DDM is the paper's approximation (solve/fractional_step.h).
+  result.summary.sensitivity_method = options.sensitivity == SensitivityMethod::kDdm && problem.incompressible
+                                          ? "ddm-approximate"
+                                          : method_name(options.sensitivity);
   for (const auto* p : params) {
     result.summary.parameters.push_back(p->name);
     result.summary.parameter_values.push_back(p->value);

@@ -1,5 +1,8 @@
 #include "engine/analysis/run_state.h"
 
+#include "engine/solve/fluid_step.h"
+#include "engine/solve/fractional_step.h"
+
 namespace pfem {
 
 namespace {
@@ -30,12 +33,17 @@ void archive(StateArchive& a, RunSummary& s) {
 
 }  // namespace
 
+std::unique_ptr<StepSolver> make_step_solver(const Problem& problem) {
+  if (problem.incompressible) return std::make_unique<FractionalStep>();
+  return std::make_unique<UnifiedStep>();
+}
+
 void archive(StateArchive& a, RunState& state) {
   archive(a, state.nodes);
   archive(a, state.mesh);
   a.expect(state.structure.has_value(), "structures");
   if (state.structure) state.structure->archive(a);
-  state.solver.archive(a);
+  state.solver->archive(a);
   state.water.archive(a);
   archive(a, state.out.responses);
   archive(a, state.out.sensitivities);

@@ -113,10 +113,9 @@ mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& prev
 // particle_spacing.h) and remeshing in between. t: the time at its start (moving walls take
 // their velocities over the step from it). Returns the Newton iterations of the last attempt;
 // the work of every attempt, failed ones included, goes into sum.
-int advance_adaptive(const Problem& problem, UnifiedStep& step, mesh::FluidMesh& mesh, StepSettings settings,
-                     const mesh::RemeshOptions& remesh_options, NodeState& nodes, double t,
-                     double removal_distance, const std::atomic<bool>* cancel, RunSummary& sum,
-                     int depth = 0) {
+int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& mesh, StepSettings settings,
+                     const mesh::RemeshOptions& remesh_options, NodeState& nodes, double t, double removal_distance,
+                     const std::atomic<bool>* cancel, RunSummary& sum, int depth = 0) {
   try {
     const WallKinematics walls = wall_kinematics(problem, nodes, t, t + settings.dt);
     settings.wall_velocity = walls.velocity;
@@ -209,7 +208,8 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
   if (state.structure) settings.structure = {&*state.structure, problem.structure_nodes, problem.structure_self_weight};
   settings.sensitivity = problem.fluid_seeds;
   settings.geometric_terms = !options.drop_geometric_terms;
-  UnifiedStep& step = state.solver;
+  state.solver = make_step_solver(problem);
+  StepSolver& step = *state.solver;
 
   const int vtk_every = options.vtk_every.value_or(problem.vtk_every);
   std::unique_ptr<VtkSeries> vtk;

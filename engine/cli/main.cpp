@@ -1,10 +1,11 @@
 // The `pfem` command: run and validate model files (design.md, "Contracts").
 //   pfem run MODEL.json --out DIR [--t-end T] [--dt DT] [--sensitivity none|ddm|fdm]
 //            [--params a,b] [--fdm-eps E] [--vtk-every N] [--vtk] [--threads N] [--progress]
-//            [--checkpoint-every N]
+//            [--checkpoint-every N] [--formulation quasi-incompressible|incompressible]
 //   pfem run --restart DIR [MODEL.json] [--out DIR] [--threads N] [--progress] [--checkpoint-every N]
 //   pfem check-gradients MODEL.json [--params a,b] [--t-end T] [--dt DT] [--fdm-eps E]
-//            [--tolerance TOL] [--threads N]
+//            [--tolerance TOL] [--threads N] [--formulation F]
+// --formulation sets the model's analysis.formulation for this run.
 //   pfem validate MODEL.json     (every error; then warnings and the run's estimated size and time)
 // `pfem run` prints a progress line on stderr when stderr is a terminal (or with --progress);
 // SIGINT or SIGTERM stops it at the end of the step in progress and writes every output with
@@ -43,10 +44,10 @@ namespace {
 const char* kUsage =
     "usage: pfem run MODEL.json --out DIR [--t-end T] [--dt DT] [--sensitivity none|ddm|fdm]\n"
     "                [--params a,b] [--fdm-eps E] [--vtk] [--vtk-every N] [--threads N] [--progress]\n"
-    "                [--checkpoint-every N]\n"
+    "                [--checkpoint-every N] [--formulation quasi-incompressible|incompressible]\n"
     "       pfem run --restart DIR [MODEL.json] [--out DIR] [--threads N] [--progress] [--checkpoint-every N]\n"
     "       pfem check-gradients MODEL.json [--params a,b] [--t-end T] [--dt DT] [--fdm-eps E]\n"
-    "                [--tolerance TOL] [--threads N]\n"
+    "                [--tolerance TOL] [--threads N] [--formulation F]\n"
     "       pfem validate MODEL.json\n";
 
 // Set by SIGINT/SIGTERM (a lock-free atomic store is async-signal-safe).
@@ -112,6 +113,19 @@ std::string writable_directory(const std::string& dir) {
   return "";
 }
 
+// --formulation F: "" when F is one (it then takes the place of the model's
+// analysis.formulation), else the usage error.
+std::string check_formulation(const std::optional<std::string>& f) {
+  if (!f || *f == "quasi-incompressible" || *f == "incompressible") return "";
+  return "--formulation must be quasi-incompressible or incompressible";
+}
+
+// The model file with --formulation's choice, if given.
+pfem::v1::Model with_formulation(pfem::v1::Model model, const std::optional<std::string>& f) {
+  if (f) model.mutable_analysis()->set_formulation(*f);
+  return model;
+}
+
 // Runs body; invalid input (ModelError) prints one line per field and gives exit code 2, any
 // other error one line and exit code 1.
 int with_exit_codes(const std::function<int()>& body) {
@@ -159,7 +173,7 @@ std::filesystem::path checkpoint_in(const std::string& dir) {
 
 // A restart's run options: the checkpointed run's; flags that would change them are refused.
 int restart_options(pfem::cli::Arguments& a, const pfem::Checkpoint& c, pfem::RunOptions& options, bool& vtk) {
-  for (const char* flag : {"--t-end", "--dt", "--sensitivity", "--params", "--fdm-eps", "--vtk-every"})
+  for (const char* flag : {"--t-end", "--dt", "--sensitivity", "--params", "--fdm-eps", "--vtk-every", "--formulation"})
     if (a.take_string(flag)) return usage_error(std::string(flag) + ": a restart continues with the checkpointed run's options");
   if (a.take_flag("--vtk")) return usage_error("--vtk: a restart continues with the checkpointed run's options");
   options.t_end = c.run.t_end, options.dt = c.run.dt;
@@ -177,6 +191,7 @@ int run(const std::vector<std::string>& args) {
   std::string out_dir;
   bool vtk = false, show_progress = false;
   std::optional<pfem::Checkpoint> restart;
+  std::optional<std::string> formulation;
   try {
     out_dir = a.take_string("--out").value_or("");
     if (auto r = a.take_string("--restart")) {
@@ -198,6 +213,8 @@ int run(const std::vector<std::string>& args) {
       if (auto e = a.take_double("--fdm-eps")) options.fdm_eps = *e;
       if (auto v = a.take_int("--vtk-every")) options.vtk_every = *v, vtk = true;
       vtk = a.take_flag("--vtk") || vtk;
+      formulation = a.take_string("--formulation");
+      if (const std::string why = check_formulation(formulation); !why.empty()) return usage_error(why);
     }
     if (auto n = a.take_int("--checkpoint-every")) {
       if (*n < 1) return usage_error("--checkpoint-every must be >= 1");
@@ -236,7 +253,8 @@ int run(const std::vector<std::string>& args) {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   return with_exit_codes([&] {
-    const auto model = a.remaining() == 0 ? restart->run.model : pfem::read_model_file(a.positional(0));
+    const auto model =
+        a.remaining() == 0 ? restart->run.model : with_formulation(pfem::read_model_file(a.positional(0)), formulation);
     const pfem::RunResult result = pfem::run(model, options);
     line.end();
     pfem::write_results(result, out_dir);
@@ -262,6 +280,7 @@ int check_gradients(const std::vector<std::string>& args) {
   pfem::cli::Arguments a(args);
   pfem::RunOptions options;
   double tolerance = 1e-3;
+  std::optional<std::string> formulation;
   try {
     options.t_end = a.take_double("--t-end");
     options.dt = a.take_double("--dt");
@@ -270,12 +289,14 @@ int check_gradients(const std::vector<std::string>& args) {
     if (auto t = a.take_double("--tolerance")) tolerance = *t;
     if (!(tolerance > 0.0)) return usage_error("--tolerance must be > 0");
     if (auto t = a.take_int("--threads")) options.threads = *t;
+    formulation = a.take_string("--formulation");
+    if (const std::string why = check_formulation(formulation); !why.empty()) return usage_error(why);
     a.expect_done(1);
   } catch (const std::invalid_argument& e) {
     return usage_error(e.what());
   }
   return with_exit_codes([&] {
-    const auto model = pfem::read_model_file(a.positional(0));
+    const auto model = with_formulation(pfem::read_model_file(a.positional(0)), formulation);
     const pfem::GradientCheck check = pfem::check_gradients(model, options, true);
     for (const auto* s : {&check.ddm, &check.fdm}) {
       if (s->status != pfem::RunStatus::kCompleted) {
@@ -283,11 +304,13 @@ int check_gradients(const std::vector<std::string>& args) {
         return 1;
       }
     }
-    std::printf("%s to t = %g s (%d steps): DDM %.1f s (response %.1f s + sensitivity %.1f s), central FDM "
-                "(eps %g) %.1f s\n",
-                a.positional(0).c_str(), check.ddm.t_end, check.ddm.steps, check.ddm.wall_seconds,
-                check.ddm.response_seconds, check.ddm.sensitivity_seconds, options.fdm_eps,
-                check.fdm.wall_seconds);
+    const bool approximate = check.ddm.sensitivity_method == "ddm-approximate";
+    std::printf(
+        "%s to t = %g s (%d steps): %s %.1f s (response %.1f s + sensitivity %.1f s), central FDM "
+        "(eps %g) %.1f s\n",
+        a.positional(0).c_str(), check.ddm.t_end, check.ddm.steps,
+        approximate ? "DDM (ddm-approximate: the incompressible formulation's)" : "DDM", check.ddm.wall_seconds,
+        check.ddm.response_seconds, check.ddm.sensitivity_seconds, options.fdm_eps, check.fdm.wall_seconds);
     std::printf("max over time of |DDM - FDM| / max |FDM|\n");
     std::printf("%-16s %-12s %12s %12s %14s\n", "recorder", "parameter", "max |FDM|", "DDM", "without H,T");
     bool pass = true;

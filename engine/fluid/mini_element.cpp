@@ -20,6 +20,15 @@ void continuity_at_midpoint(TriangleGeometry& g, const std::array<double, 3>& xn
   g.Am = g.cm[1] * g.dm[2] - g.cm[2] * g.dm[1];  // (x2 - x1)(y3 - y1) - (x3 - x1)(y2 - y1) at the midpoint
 }
 
+TriangleGeometry step_geometry(const std::array<double, 3>& xn, const std::array<double, 3>& yn,
+                               const std::array<double, 3>& vx, const std::array<double, 3>& vy, double dt) {
+  std::array<double, 3> x, y;
+  for (int a = 0; a < 3; ++a) x[a] = xn[a] + dt * vx[a], y[a] = yn[a] + dt * vy[a];
+  TriangleGeometry g = triangle_geometry(x, y);
+  continuity_at_midpoint(g, xn, yn);
+  return g;
+}
+
 void mini_matrices(const TriangleGeometry& g, const FluidConstants& f, double t, double bx,
                    double by, MiniMatrices& out) {
   const double A = g.A;

@@ -34,6 +34,11 @@ TriangleGeometry triangle_geometry(const std::array<double, 3>& x, const std::ar
 // (3 % of the dam break's area in 0.5 s). The momentum balance stays at x.
 void continuity_at_midpoint(TriangleGeometry& g, const std::array<double, 3>& xn, const std::array<double, 3>& yn);
 
+// A step's geometry from corners at xn, yn moving at vx, vy: at x = x_n + dt v, with the mass
+// balance's at the midpoint (continuity_at_midpoint).
+TriangleGeometry step_geometry(const std::array<double, 3>& xn, const std::array<double, 3>& yn,
+                               const std::array<double, 3>& vx, const std::array<double, 3>& vy, double dt);
+
 struct FluidConstants {
   double rho = 0.0;
   double mu = 0.0;

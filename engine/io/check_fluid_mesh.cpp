@@ -3,15 +3,18 @@
 #include <cmath>
 #include <string>
 
+#include "engine/io/model_checks.h"
 #include "engine/io/model_size.h"
 
 namespace pfem {
+
+bool is_incompressible(const pfem::v1::Model& model) { return model.analysis().formulation() == "incompressible"; }
 
 void check_fluid(const pfem::v1::Model& model, FieldChecker& out) {
   if (!model.has_fluid()) return out.error("fluid", "is required (rho, mu, kappa)");
   out.positive("fluid.rho", model.fluid().rho());
   out.non_negative("fluid.mu", model.fluid().mu());
-  out.positive("fluid.kappa", model.fluid().kappa());
+  if (!is_incompressible(model)) out.positive("fluid.kappa", model.fluid().kappa());  // else a warning if set
 }
 
 void check_mesh(const pfem::v1::Model& model, FieldChecker& out) {
@@ -64,6 +67,12 @@ void check_analysis(const pfem::v1::Model& model, FieldChecker& out) {
   if (a.has_solver() && a.solver() != "condensed-bubble" && a.solver() != "unified-fractional-step")
     out.error("analysis.solver",
               "unknown solver '" + a.solver() + "'; expected condensed-bubble or unified-fractional-step");
+  if (a.has_formulation() && a.formulation() != "quasi-incompressible" && a.formulation() != "incompressible")
+    out.error("analysis.formulation", "must be quasi-incompressible or incompressible (got '" + a.formulation() + "')");
+  else if (is_incompressible(model) && a.has_solver())
+    out.error("analysis.solver",
+              "solves the quasi-incompressible Newton system; the incompressible formulation "
+              "has its own fractional step (leave analysis.solver out)");
 }
 
 }  // namespace pfem

@@ -312,6 +312,7 @@ Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<
   if (a.has_newton_max_iterations()) pb.newton_max_iterations = a.newton_max_iterations();
   if (a.has_record_every()) pb.record_every = a.record_every();
   pb.unified_fractional_step = a.has_solver() && a.solver() == "unified-fractional-step";
+  pb.incompressible = is_incompressible(model);
   if (a.has_vtk_every()) pb.vtk_every = a.vtk_every();
 
   const Bounds domain = domain_bounds(model);

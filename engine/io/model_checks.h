@@ -16,6 +16,10 @@ bool is_element_quantity(const std::string& q);
 bool is_global_quantity(const std::string& q);
 bool is_point_quantity(const std::string& q);
 
+// Whether analysis.formulation is "incompressible" (div v = 0, no bulk modulus; the default is
+// "quasi-incompressible").
+bool is_incompressible(const pfem::v1::Model& model);
+
 // "<beam>/<k>" -> {"<beam>", k} for a k written as a plain positive integer; nullopt otherwise.
 // Names generated for a beam's interior nodes and its elements (see model.proto, Beam).
 std::optional<std::pair<std::string, int>> split_generated_name(const std::string& name);

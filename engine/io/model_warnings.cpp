@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "engine/io/model_checks.h"
 
 namespace pfem {
 
@@ -82,6 +83,13 @@ double bending_stiffness(const pfem::v1::Structure& s, const pfem::v1::Beam& b) 
 
 }  // namespace
 
+std::optional<FieldError> ignored_bulk_modulus(const Model& m) {
+  if (!is_incompressible(m) || m.fluid().kappa() == 0.0) return std::nullopt;
+  return FieldError{"fluid.kappa",
+                    "is ignored: analysis.formulation \"incompressible\" has div v = 0 and no bulk "
+                    "modulus (leave fluid.kappa out)"};
+}
+
 std::vector<FieldError> model_warnings(const Model& m) {
   std::vector<FieldError> w;
   const double rho = m.fluid().rho(), kappa = m.fluid().kappa(), h = m.mesh().h();
@@ -92,9 +100,11 @@ std::vector<FieldError> model_warnings(const Model& m) {
   const auto [y_lo, y_hi] = fluid_y_range(m);
   const double height = y_hi - y_lo, g = gravity(m);
   const double speed = std::sqrt(2.0 * g * std::max(height, 0.0));  // expected flow speed
-  if (speed > 0 && rho > 0 && kappa > 0) {
+  const bool incompressible = is_incompressible(m);
+  if (auto ignored = ignored_bulk_modulus(m)) w.push_back(std::move(*ignored));
+  if (speed > 0 && rho > 0) {
     const double c = std::sqrt(kappa / rho);
-    if (c < kMinSoundToFlowSpeed * speed)
+    if (!incompressible && kappa > 0 && c < kMinSoundToFlowSpeed * speed)
       w.push_back({"fluid.kappa", "the speed of sound sqrt(kappa/rho) = " + num(c) + " m/s is below " +
                                       num(kMinSoundToFlowSpeed) + " x the expected flow speed sqrt(2 g H) = " +
                                       num(speed) + " m/s (H = " + num(height) +

@@ -2,6 +2,7 @@
 // What `pfem validate` says about a valid model beyond its errors: warnings for values that
 // are allowed but implausible (they validate and then fail, or lose water, later). The estimate
 // of the run's size and time is engine/analysis/run_estimate.h.
+#include <optional>
 #include <vector>
 
 #include "engine/io/model_io.h"
@@ -16,10 +17,15 @@ inline constexpr double kMinSoundToFlowSpeed = 10.0;      // sqrt(kappa/rho) aga
 
 // Warnings, each naming the field, for a model without errors (fields it cannot read are
 // skipped): a fluid density outside [100, 30000] kg/m^3; a speed of sound sqrt(kappa/rho)
-// below 10 times the expected flow speed U = sqrt(2 g H) (H the height of the water); a dt
+// below 10 times the expected flow speed U = sqrt(2 g H) (H the height of the water), or with
+// the incompressible formulation a fluid.kappa at all (it is ignored there); a dt
 // above h / U (a particle at speed U crossing more than one spacing per step); a beam whose
 // deflection as a cantilever under the hydrostatic load of min(H, L) of water exceeds its
 // length L; a recorder point farther than h from every fluid region and from the structure.
 std::vector<FieldError> model_warnings(const pfem::v1::Model& model);
+
+// The warning for a fluid.kappa the incompressible formulation ignores (also in a run's
+// summary), or nullopt.
+std::optional<FieldError> ignored_bulk_modulus(const pfem::v1::Model& model);
 
 }  // namespace pfem

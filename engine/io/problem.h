@@ -56,6 +56,7 @@ struct Problem {
   double newton_tolerance = 1e-10;
   int newton_max_iterations = 50;
   bool unified_fractional_step = false;  // analysis.solver
+  bool incompressible = false;           // analysis.formulation (engine/solve/step_solver.h)
   int record_every = 1;
   int vtk_every = 10;
   Box domain;

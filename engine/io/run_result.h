@@ -46,7 +46,9 @@ struct RunSummary {
   double fluid_area_initial = 0.0;
   double fluid_area_final = 0.0;
   double fluid_area_left = 0.0;  // A_left: the mesh area the particles that left the domain held
-  std::string sensitivity_method;       // "none", "ddm" or "fdm"
+  // "none", "ddm", "fdm", or "ddm-approximate" (the DDM of analysis.formulation "incompressible":
+  // H and T from the previous step, one pass of the fractional step, docs/theory.md §8).
+  std::string sensitivity_method;
   std::vector<std::string> parameters;  // names differentiated
   std::vector<double> parameter_values;
 };

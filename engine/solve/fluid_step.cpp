@@ -1,5 +1,7 @@
 #include "engine/solve/fluid_step.h"
 
+#include "engine/solve/step_commit.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -192,29 +194,14 @@ void UnifiedStep::commit(const mesh::FluidMesh& mesh, const StepSettings& s, Nod
     nodes.wz[sn[k]] = d >= 0 ? v_[d] : 0.0;
     nodes.rz[sn[k]] += s.dt * nodes.wz[sn[k]];
   }
-  commit_pressures(mesh, nodes);
+  node_pressures(num_, mesh, p_, nodes.size(), nodes.p, nodes.side_p);
   const int num_params = static_cast<int>(s.sensitivity.size());
-  if (num_params > 0) sensitivity_.commit(mesh, s, num_, hits_wall_, nodes);
+  if (num_params > 0) sensitivity_.commit(s, num_, mesh, structure_, hits_wall_, nodes);
   if (s.structure.model) s.structure.model->commit();
   move_free_particles(mesh.in_mesh, walls_, {s.gx, s.gy}, s.dt, nodes);
   const int bubbles = num_.velocities - num_.node_velocities;
   bubble_history_.store(mesh.triangles, v_.tail(bubbles),
                         num_params > 0 ? Eigen::MatrixXd(sensitivity_.velocities().bottomRows(bubbles)) : Eigen::MatrixXd());
-}
-
-void UnifiedStep::commit_pressures(const mesh::FluidMesh& mesh, NodeState& nodes) const {
-  // A node's p is the mean of its wet sides' (its one pressure but at wall and beam lines); each
-  // side of a node of several keeps its own, NaN where dry.
-  std::fill(nodes.p.begin(), nodes.p.end(), 0.0);
-  std::fill(nodes.side_p.begin(), nodes.side_p.end(), NodeState::kNoSide);
-  std::vector<int> wet(nodes.size(), 0);
-  for (int q = 0; q < num_.pressures; ++q) {
-    const int i = num_.pressure_node[q];
-    nodes.p[i] = wet[i]++ ? nodes.p[i] + p_[q] : p_[q];
-    if (mesh.multi_sided(i)) nodes.side_p[i * mesh::kMaxPressureSides + num_.pressure_side[q]] = p_[q];
-  }
-  for (std::size_t i = 0; i < nodes.size(); ++i)
-    if (wet[i] > 1) nodes.p[i] /= wet[i];
 }
 
 }  // namespace pfem

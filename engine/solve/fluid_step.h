@@ -54,6 +54,7 @@
 #include "engine/solve/step_elements.h"
 #include "engine/solve/step_numbering.h"
 #include "engine/solve/step_sensitivity.h"
+#include "engine/solve/step_solver.h"
 #include "engine/solve/step_structure.h"
 #include "engine/solve/wall_guard.h"
 #include "engine/structure/structure_model.h"
@@ -123,7 +124,7 @@ class StepCancelled : public std::runtime_error {
   StepCancelled() : std::runtime_error("cancelled") {}
 };
 
-class UnifiedStep {
+class UnifiedStep : public StepSolver {
  public:
   UnifiedStep() = default;
 
@@ -131,13 +132,13 @@ class UnifiedStep {
   // fall freely; a particle that would cross a wall or beam is removed (kind Removed). Throws
   // StepFailure or StepCancelled (nodes are then left unchanged).
   StepReport advance(const mesh::FluidMesh& mesh, const StepSettings& settings, NodeState& nodes,
-                     const std::atomic<bool>* cancel = nullptr);
+                     const std::atomic<bool>* cancel = nullptr) override;
   // The report of the last call, also when it threw (the work of a failed attempt).
-  const StepReport& last_report() const { return report_; }
+  const StepReport& last_report() const override { return report_; }
   // Saves or restores what one step hands to the next (the bubble velocities and their
   // sensitivities by triangle, the DDM's steps left on its LU) for a checkpoint; between steps
   // only.
-  void archive(StateArchive& a);
+  void archive(StateArchive& a) override;
 
  private:
   // The first iterate: the unknowns at t_n (bubbles by triangle), and the structure's state
@@ -159,8 +160,6 @@ class UnifiedStep {
   void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
   // The converged step to the nodes, the structure and the bubble history.
   void commit(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes);
-  // The converged pressures to the nodes (a node's p, and its sides' at wall and beam lines).
-  void commit_pressures(const mesh::FluidMesh& mesh, NodeState& nodes) const;
 
   // Per step.
   StepReport report_;

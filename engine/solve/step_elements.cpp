@@ -19,22 +19,7 @@ void StepElements::begin(const mesh::FluidMesh& mesh, const StepSettings& s, con
     const int i = num.pressure_node[q];
     pn_[q] = nodes.pressure(i, mesh.multi_sided(i), num.pressure_side[q]);
   }
-  volume_correction(nodes);
-}
-
-void StepElements::volume_correction(const NodeState& nodes) {
-  const mesh::FluidMesh& mesh = *mesh_;
-  const StepSettings& s = *s_;
-  element_area_n_.resize(mesh.triangles.size());
-  area_n_ = 0.0;
-  for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
-    element_area_n_[e] = nodes.triangle_area(mesh.triangles[e]);  // the nodes are at t_n
-    area_n_ += element_area_n_[e];
-  }
-  dilatation_ = s.target_area > 0.0 && s.volume_relaxation > 0.0 && area_n_ > 0.0
-                    ? (s.target_area / area_n_ - 1.0) / s.volume_relaxation
-                    : 0.0;
-  source_scale_ = dilatation_ * s.thickness / 3.0;
+  volume_ = pfem::volume_correction(mesh, nodes, s.target_area, s.volume_relaxation, s.thickness);  // at t_n
 }
 
 void StepElements::update(const Eigen::VectorXd& v, const Eigen::VectorXd& p) {
@@ -115,8 +100,8 @@ void StepElements::assemble(StepResidual& r) const {
       if (dx >= 0) r.rv[dx] += re.rv(2 * a);
       if (dy >= 0) r.rv[dy] += re.rv(2 * a + 1);
       r.rp[q] += re.rp(a), r.rp_abs[q] += re.rp_abs(a), r.mp[q] += re.mp;
-      if (dilatation_ != 0.0) {
-        const double source = source_scale_ * element_area_n_[e];  // the dilatation's share of the corner
+      if (volume_.dilatation != 0.0) {
+        const double source = volume_.corner_source(e);
         r.rp[q] += source, r.rp_abs[q] += std::abs(source);
       }
     }

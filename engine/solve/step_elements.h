@@ -11,6 +11,7 @@
 #include "engine/mesh/remesher.h"
 #include "engine/solve/node_state.h"
 #include "engine/solve/step_numbering.h"
+#include "engine/solve/volume_correction.h"
 
 namespace pfem {
 
@@ -50,17 +51,12 @@ class StepElements {
   const std::vector<double>& y_n() const { return yn_; }
   const Eigen::VectorXd& pressures_n() const { return pn_; }
   const std::vector<Eigen::Vector2d>& bubbles_n() const { return vbn_; }
-  // Volume correction: the dilatation [1/s] (0: none), the mesh's area at t_n and each element's
-  // area there.
-  double dilatation() const { return dilatation_; }
-  double area_n() const { return area_n_; }
-  const std::vector<double>& element_area_n() const { return element_area_n_; }
+  // The step's volume correction (its dilatation 0: none).
+  const VolumeCorrection& volume() const { return volume_; }
 
  private:
   // The prescribed velocity of component c (0: x, 1: y) of node i (0 unless a moving wall's).
   double wall_velocity(int i, int c) const;
-  // The volume correction's dilatation for this step, from the mesh's area at t_n.
-  void volume_correction(const NodeState& nodes);
 
   const mesh::FluidMesh* mesh_ = nullptr;
   const StepSettings* s_ = nullptr;
@@ -68,8 +64,7 @@ class StepElements {
   std::vector<double> xn_, yn_, vxn_, vyn_;  // state at t_n (per node)
   Eigen::VectorXd pn_;                       // ... and the pressures there (per unknown)
   std::vector<Eigen::Vector2d> vbn_;         // bubble velocities at t_n (per element)
-  double dilatation_ = 0.0, area_n_ = 0.0, source_scale_ = 0.0;
-  std::vector<double> element_area_n_;
+  VolumeCorrection volume_;
   // At the current iterate.
   std::vector<fluid::TriangleGeometry> geometries_;
   std::vector<fluid::DirectResidual> element_residuals_;

@@ -84,4 +84,25 @@ std::array<int, 9> StepNumbering::condensed_unknowns(
   return u;
 }
 
+void gather_velocities(const StepNumbering &num, const NodeState &nodes,
+                       Eigen::VectorXd &v) {
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (num.vx[i] >= 0)
+      v[num.vx[i]] = nodes.vx[i];
+    if (num.vy[i] >= 0)
+      v[num.vy[i]] = nodes.vy[i];
+  }
+}
+
+Eigen::VectorXd gather_pressures(const StepNumbering &num,
+                                 const mesh::FluidMesh &mesh,
+                                 const NodeState &nodes) {
+  Eigen::VectorXd p(num.pressures);
+  for (int q = 0; q < num.pressures; ++q) {
+    const int i = num.pressure_node[q];
+    p[q] = nodes.pressure(i, mesh.multi_sided(i), num.pressure_side[q]);
+  }
+  return p;
+}
+
 } // namespace pfem

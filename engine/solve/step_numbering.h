@@ -6,6 +6,7 @@
 // node, its rotation rate its own), then two bubble unknowns per triangle;
 // pressures are numbered apart, one at every mesh node (free surface included) and one per wet
 // side at a node of wall or beam lines (mesh::FluidMesh::sides), node by node.
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -51,5 +52,15 @@ StepNumbering number_unknowns(const mesh::FluidMesh &mesh,
                               std::span<const std::uint8_t> slip,
                               const structure::StructureModel *model,
                               std::span<const int> structure_node);
+
+// The state at t_n in a step's unknowns: each node's velocities into its
+// velocity unknowns of v (the rest of v untouched), and the pressure of each
+// pressure unknown (a side that had no water yet takes its node's p,
+// NodeState::pressure).
+void gather_velocities(const StepNumbering &num, const NodeState &nodes,
+                       Eigen::VectorXd &v);
+Eigen::VectorXd gather_pressures(const StepNumbering &num,
+                                 const mesh::FluidMesh &mesh,
+                                 const NodeState &nodes);
 
 } // namespace pfem

@@ -7,6 +7,7 @@
 
 #include "engine/solve/fluid_step.h"
 #include "engine/solve/gmres.h"
+#include "engine/solve/step_commit.h"
 
 namespace pfem {
 
@@ -51,26 +52,12 @@ void StepSensitivity::right_hand_sides(const ConvergedStep& c, const NodeState& 
   Eigen::Matrix<double, 6, 1> dxn;
   fluid::Vec8 dvn;
   fluid::Vec3 dpn;
-  // The volume correction's dilatation (target / A_n - 1) / relaxation depends on the parameter
-  // through the mesh's area at t_n and through the target (the initial area less the water in
-  // flight or gone, analysis/water_account.h); each corner's source dilatation * thickness *
-  // A_e / 3 through it and A_e.
-  // (At this point the nodes are still at t_n.)
-  const double dilatation = c.elements.dilatation(), area_n = c.elements.area_n();
-  const std::vector<double>& element_area_n = c.elements.element_area_n();
-  std::vector<double> darea_e;
-  Eigen::VectorXd ddilatation = Eigen::VectorXd::Zero(num_params);
-  if (dilatation != 0.0) {
-    darea_e.assign(static_cast<std::size_t>(ne) * num_params, 0.0);
-    for (int e = 0; e < ne; ++e)
-      for (int k = 0; k < num_params; ++k) {
-        darea_e[static_cast<std::size_t>(e) * num_params + k] = nodes.triangle_area_sensitivity(mesh.triangles[e], k);
-        ddilatation(k) += darea_e[static_cast<std::size_t>(e) * num_params + k];
-      }
-    ddilatation *= -s.target_area / (area_n * area_n * s.volume_relaxation);
-    for (int k = 0; k < num_params && !s.target_area_sensitivity.empty(); ++k)
-      ddilatation(k) += s.target_area_sensitivity[k] / (area_n * s.volume_relaxation);
-  }
+  // The volume correction's corner sources depend on the parameter through the mesh's area at
+  // t_n, each element's area and the target (the initial area less the water in flight or gone,
+  // analysis/water_account.h). At this point the nodes are still at t_n.
+  const VolumeCorrection& volume = c.elements.volume();
+  const Eigen::MatrixXd dsource =
+      corner_source_sensitivity(volume, mesh, nodes, s.sensitivity, s.target_area_sensitivity);
   for (int e = 0; e < ne; ++e) {
     const auto& m = mats[e];
     const auto& tri = mesh.triangles[e];
@@ -106,11 +93,7 @@ void StepSensitivity::right_hand_sides(const ConvergedStep& c, const NodeState& 
         sv -= a_e.col(col) * w;
         sp -= q_e.col(col) * w;
       }
-      if (dilatation != 0.0) {
-        const double da = darea_e[static_cast<std::size_t>(e) * num_params + k];
-        sp.array() += s.sensitivity[k].thickness * dilatation * element_area_n[e] / 3.0 +
-                      s.thickness / 3.0 * (ddilatation(k) * element_area_n[e] + dilatation * da);
-      }
+      if (volume.dilatation != 0.0) sp.array() += dsource(e, k);
       for (int a = 0; a < 3; ++a) {
         const int i = tri[a], dx = num.vx[i], dy = num.vy[i];
         if (dx >= 0) rv(dx, k) += sv(2 * a);
@@ -185,63 +168,12 @@ void StepSensitivity::solve(const ConvergedStep& c, const NodeState& nodes) {
   if (!dv_.allFinite() || !dp_.allFinite()) throw StepFailure("non-finite sensitivities");
 }
 
-void StepSensitivity::commit_pressures(const mesh::FluidMesh& mesh, const StepNumbering& num, NodeState& nodes,
-                                       int num_params) const {
-  // As the step's commit_pressures: a node's the mean of its wet sides', each side's its own.
-  std::vector<int> wet(nodes.size(), 0);
-  for (int q = 0; q < num.pressures; ++q) ++wet[num.pressure_node[q]];
-  for (std::size_t i = 0; i < nodes.size(); ++i)
-    for (int k = 0; k < num_params; ++k) {
-      double* d = nodes.sensitivity(i, k);
-      d[NodeState::kDp] = 0.0;
-      std::fill_n(d + NodeState::kDpSide, mesh::kMaxPressureSides, NodeState::kNoSide);
-    }
-  std::vector<int> seen(nodes.size(), 0);
-  for (int q = 0; q < num.pressures; ++q) {
-    const int i = num.pressure_node[q];
-    const bool first = seen[i]++ == 0;
-    for (int k = 0; k < num_params; ++k) {
-      double* d = nodes.sensitivity(i, k);
-      d[NodeState::kDp] = first ? dp_(q, k) : d[NodeState::kDp] + dp_(q, k);
-      if (seen[i] == wet[i] && wet[i] > 1) d[NodeState::kDp] /= wet[i];
-      if (mesh.multi_sided(i)) d[NodeState::kDpSide + num.pressure_side[q]] = dp_(q, k);
-    }
-  }
-}
-
-void StepSensitivity::commit(const mesh::FluidMesh& mesh, const StepSettings& s, const StepNumbering& num,
-                             std::span<const std::uint8_t> hits_wall, NodeState& nodes) const {
-  const int num_params = static_cast<int>(s.sensitivity.size());
-  commit_pressures(mesh, num, nodes, num_params);
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const int dx = num.vx[i], dy = num.vy[i];
-    for (int k = 0; k < num_params; ++k) {
-      double* d = nodes.sensitivity(i, k);
-      // A particle that hit a wall is taken out where it was (advance()): it keeps its state.
-      if ((dx < 0 && dy < 0) || hits_wall[i]) continue;
-      const auto wall = [&](int c) {
-        return s.wall_velocity_sensitivity.empty() ? 0.0 : s.wall_velocity_sensitivity[(i * num_params + k) * 2 + c];
-      };
-      d[NodeState::kDvx] = dx >= 0 ? dv_(dx, k) : wall(0);
-      d[NodeState::kDvy] = dy >= 0 ? dv_(dy, k) : wall(1);
-      d[NodeState::kDx] += s.dt * d[NodeState::kDvx];
-      d[NodeState::kDy] += s.dt * d[NodeState::kDvy];
-    }
-  }
-  auto* model = s.structure.model;
-  if (!model) return;
-  const auto& sn = s.structure.node;
-  Eigen::VectorXd du(model->num_dofs());
-  for (int k = 0; k < num_params; ++k) {
-    for (std::size_t j = 0; j < sn.size(); ++j) {
-      double* d = nodes.sensitivity(sn[j], k);
-      const int w = num.structure[3 * j + 2];
-      d[NodeState::kDwz] = w >= 0 ? dv_(w, k) : 0.0;
-      d[NodeState::kDrz] += s.dt * d[NodeState::kDwz];
-      du.segment<3>(3 * j) << d[NodeState::kDx], d[NodeState::kDy], d[NodeState::kDrz];
-    }
-    model->set_displacement_sensitivity(k, du);
-  }
+void StepSensitivity::commit(const StepSettings& s, const StepNumbering& num, const mesh::FluidMesh& mesh,
+                             const StepStructure& structure, std::span<const std::uint8_t> hits_wall,
+                             NodeState& nodes) const {
+  commit_pressure_sensitivities(num, mesh, dp_, nodes);
+  commit_velocity_sensitivities(num, dv_, hits_wall, s.wall_velocity_sensitivity, s.dt, nodes);
+  structure.commit_sensitivities(dv_, nodes);
 }
 
 }  // namespace pfem

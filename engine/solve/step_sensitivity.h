@@ -31,8 +31,8 @@ class StepSensitivity {
   void solve(const ConvergedStep& c, const NodeState& nodes);
   // The solved sensitivities to the nodes and the structure (before the structure's own
   // commit); a particle that hits a wall (hits_wall, per node) keeps its own.
-  void commit(const mesh::FluidMesh& mesh, const StepSettings& s, const StepNumbering& num,
-              std::span<const std::uint8_t> hits_wall, NodeState& nodes) const;
+  void commit(const StepSettings& s, const StepNumbering& num, const mesh::FluidMesh& mesh,
+              const StepStructure& structure, std::span<const std::uint8_t> hits_wall, NodeState& nodes) const;
   // The velocity unknowns' sensitivities (bubbles included), one column per parameter.
   const Eigen::MatrixXd& velocities() const { return dv_; }
   // Saves or restores what it hands to the next step (lu_steps_left_), for a checkpoint.
@@ -42,8 +42,6 @@ class StepSensitivity {
   // The right-hand sides in the full unknowns: velocity rows rv and pressure rows rp.
   void right_hand_sides(const ConvergedStep& c, const NodeState& nodes, Eigen::MatrixXd& rv,
                         Eigen::MatrixXd& rp) const;
-  void commit_pressures(const mesh::FluidMesh& mesh, const StepNumbering& num, NodeState& nodes,
-                        int num_params) const;
 
   StepJacobian jacobian_;
   Eigen::MatrixXd dv_, dp_;

@@ -85,4 +85,20 @@ Eigen::VectorXd StepStructure::sensitivity_rhs(const NodeState& nodes, int k, co
   return r;
 }
 
+void StepStructure::commit_sensitivities(const Eigen::MatrixXd& dv, NodeState& nodes) const {
+  auto* model = coupling_->model;
+  if (!model) return;
+  Eigen::VectorXd du(model->num_dofs());
+  for (int k = 0; k < static_cast<int>(dv.cols()); ++k) {
+    for (std::size_t j = 0; j < coupling_->node.size(); ++j) {
+      double* d = nodes.sensitivity(coupling_->node[j], k);
+      const int rate = num_->structure[3 * j + 2];
+      d[NodeState::kDwz] = rate < 0 ? 0.0 : dv(rate, k);
+      d[NodeState::kDrz] += dt_ * d[NodeState::kDwz];
+      du.segment<3>(3 * j) << d[NodeState::kDx], d[NodeState::kDy], d[NodeState::kDrz];
+    }
+    model->set_displacement_sensitivity(k, du);
+  }
+}
+
 }  // namespace pfem

@@ -38,6 +38,10 @@ class StepStructure {
   // Its rows of the DDM's right-hand side for parameter k at the converged iterate v (the nodes
   // still at t_n with their sensitivities).
   Eigen::VectorXd sensitivity_rhs(const NodeState& nodes, int k, const Eigen::VectorXd& v) const;
+  // The solved sensitivities of the step's unknowns (a column per parameter) to the rotations'
+  // and rotation rates' sensitivities of the structure's nodes, and the nodes' displacement
+  // sensitivities (translations already committed) to the model, before its commit.
+  void commit_sensitivities(const Eigen::MatrixXd& dv, NodeState& nodes) const;
 
  private:
   Eigen::VectorXd velocities(const Eigen::VectorXd& v) const;  // per structure dof, at the iterate

@@ -138,6 +138,18 @@ TEST_F(CheckpointRestart, FluidOnlyWithAndWithoutDdm) {
   }
 }
 
+// The incompressible formulation (engine/solve/fractional_step.h) hands nothing from step to
+// step beyond the nodes, the mesh and the structure: its restart, with the approximate DDM, is
+// bit-identical too (the yielding obstacle: the structure's history and its sensitivities).
+TEST_F(CheckpointRestart, TheIncompressibleFormulationWithItsApproximateDdm) {
+  auto model = yielding_obstacle();
+  model.mutable_analysis()->set_formulation("incompressible");
+  RunOptions options;
+  options.sensitivity = SensitivityMethod::kDdm;
+  options.params = {"E", "Fy"};
+  expect_same_run(run(model, options), stopped_and_restarted(model, options, 13, 5));
+}
+
 // A piston wavemaker (tests/data/piston-tank.json to 0.4 s) with the DDM of its stroke and period:
 // the paddle's place and velocity come from the motion at the restart's time.
 TEST_F(CheckpointRestart, APistonWavemakerWithDdm) {

@@ -605,4 +605,27 @@ TEST(MiniElement, DivergenceOfUniformExpansion) {
   }
 }
 
+// step_geometry: over a step x = x_n + dt v the triangle's (twice) area changes by exactly
+// dt (c_m . vx + d_m . vy) with the midpoint's c, d (its mass balance keeps the area), and the
+// momentum balance's geometry is the end's.
+TEST(MiniElement, StepGeometryTakesTheMassBalanceAtTheMidpoint) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::array<double, 3> xn{0.0, 0.01, 0.002}, yn{0.0, 0.001, 0.009}, vx, vy, x, y;
+    for (int a = 0; a < 3; ++a) vx[a] = u(rng), vy[a] = u(rng);
+    const double dt = 2e-3;
+    for (int a = 0; a < 3; ++a) x[a] = xn[a] + dt * vx[a], y[a] = yn[a] + dt * vy[a];
+    const TriangleGeometry g = pfem::fluid::step_geometry(xn, yn, vx, vy, dt);
+    const TriangleGeometry end = pfem::fluid::triangle_geometry(x, y);
+    EXPECT_EQ(g.A, end.A);
+    EXPECT_EQ(g.c, end.c);
+    double rate = 0.0;
+    for (int a = 0; a < 3; ++a) rate += g.cm[a] * vx[a] + g.dm[a] * vy[a];
+    const double change = end.A - pfem::fluid::triangle_geometry(xn, yn).A;
+    EXPECT_NEAR(change, dt * rate, 1e-15 * std::abs(end.A)) << "trial " << trial;
+    EXPECT_GT(std::abs(change), 1e-6 * std::abs(end.A));  // the step does change the area
+  }
+}
+
 }  // namespace
