@@ -121,7 +121,9 @@ int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& 
     settings.wall_velocity = walls.velocity;
     settings.wall_velocity_sensitivity = walls.sensitivity;
     settings.give_up_inverted = depth < kMaxHalvings;
-    step.advance(mesh, settings, nodes, cancel);
+    step.solve(mesh, settings, nodes, cancel);
+    step.solve_sensitivities(mesh, settings, nodes);
+    step.commit(mesh, settings, nodes);
     place_moving_walls(problem, t + settings.dt, walls, nodes);
     add_work(sum, step.last_report());
     return step.last_report().iterations;

@@ -37,8 +37,8 @@ StepFailure not_converged(const NewtonMonitor& newton) {
 
 }  // namespace
 
-StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes,
-                                const std::atomic<bool>* cancel) {
+void UnifiedStep::solve(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes,
+                        const std::atomic<bool>* cancel) {
   report_ = StepReport{};
   if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
   num_ = number_unknowns(mesh, nodes, s.slip, s.structure.model, s.structure.node);
@@ -59,9 +59,6 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     report_.iterations = newton.iteration() + 1;
   }
   check_admissible(mesh, s, nodes);
-  if (!s.sensitivity.empty()) solve_sensitivities(mesh, s, nodes);
-  commit(mesh, s, nodes);
-  return report_;
 }
 
 void UnifiedStep::initial_iterate(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
@@ -140,6 +137,7 @@ void UnifiedStep::newton_correction(const StepSettings& s, bool first, bool stal
 }
 
 void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
+  if (s.sensitivity.empty()) return;
   const auto t0 = Clock::now();
   const bool newton_factorized =
       s.formulation == StepSettings::Formulation::kCondensedBubble && condensed_.analyzed();
@@ -150,7 +148,7 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
 }
 
 void UnifiedStep::check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
-  // A particle whose move crosses a wall or beam hits it (advance() takes it out): typically a
+  // A particle whose move crosses a wall or beam hits it (commit() takes it out): typically a
   // splash particle reaching the floor or the obstacle's back, in free-surface triangles that
   // have no pressure to stop it, or in none on that edge at all (the alpha test drops the
   // sliver it would make). A shorter step only brings it closer.

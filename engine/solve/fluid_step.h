@@ -128,11 +128,15 @@ class UnifiedStep : public StepSolver {
  public:
   UnifiedStep() = default;
 
-  // nodes hold x, v, p at t_n on entry and at t_{n+1} on return. Particles outside the mesh
-  // fall freely; a particle that would cross a wall or beam is removed (kind Removed). Throws
-  // StepFailure or StepCancelled (nodes are then left unchanged).
-  StepReport advance(const mesh::FluidMesh& mesh, const StepSettings& settings, NodeState& nodes,
-                     const std::atomic<bool>* cancel = nullptr) override;
+  // Newton from the state at t_n to the converged step. A particle whose move would cross a
+  // wall or beam is marked to be removed (kind Removed) by commit(); particles outside the
+  // mesh fall freely there.
+  void solve(const mesh::FluidMesh& mesh, const StepSettings& settings, const NodeState& nodes,
+             const std::atomic<bool>* cancel) override;
+  // The DDM of the converged step (the condensed system analysed for it if Newton did not).
+  void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) override;
+  // The converged step to the nodes, the structure and the bubble history.
+  void commit(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) override;
   // The report of the last call, also when it threw (the work of a failed attempt).
   const StepReport& last_report() const override { return report_; }
   // Saves or restores what one step hands to the next (the bubble velocities and their
@@ -156,10 +160,6 @@ class UnifiedStep : public StepSolver {
   // wall or beam is marked in hits_wall_ instead (its triangles may invert): it is removed. Sets
   // walls_ (engine/solve/wall_guard.h) for the particles outside the mesh.
   void check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
-  // The DDM of the converged step (the condensed system analysed for it if Newton did not).
-  void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
-  // The converged step to the nodes, the structure and the bubble history.
-  void commit(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes);
 
   // Per step.
   StepReport report_;

@@ -193,15 +193,12 @@ void FractionalStep::iterate(const mesh::FluidMesh& mesh, const StepSettings& s,
   }
 }
 
-StepReport FractionalStep::advance(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes,
-                                   const std::atomic<bool>* cancel) {
+void FractionalStep::solve(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes,
+                           const std::atomic<bool>* cancel) {
   report_ = StepReport{};
   begin(mesh, s, nodes);
   iterate(mesh, s, cancel);
   check_admissible(mesh, s, nodes);
-  solve_sensitivities(mesh, s, nodes);  // none without parameters
-  commit(mesh, s, nodes);
-  return report_;
 }
 
 }  // namespace pfem

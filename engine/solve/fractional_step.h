@@ -36,15 +36,17 @@ namespace pfem {
 
 class FractionalStep final : public StepSolver {
  public:
-  StepReport advance(const mesh::FluidMesh& mesh, const StepSettings& settings, NodeState& nodes,
-                     const std::atomic<bool>* cancel = nullptr) override;
+  void solve(const mesh::FluidMesh& mesh, const StepSettings& settings, const NodeState& nodes,
+             const std::atomic<bool>* cancel) override;
+  // fractional_sensitivity.cpp: the approximate DDM of the converged step (timed in the report).
+  void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) override;
+  void commit(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) override;
   const StepReport& last_report() const override { return report_; }
   void archive(StateArchive& a) override;  // a tag: the step hands nothing on (bubbles start from rest)
 
  private:
   // fractional_step.cpp: the step's numbering and first iterate (the state at t_n), its
-  // iterations to convergence, the residual and its size, the converged step's checks and its
-  // commit.
+  // iterations to convergence, the residual and its size, the converged step's checks.
   void begin(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
   void iterate(const mesh::FluidMesh& mesh, const StepSettings& s, const std::atomic<bool>* cancel);
   void element_terms(const mesh::FluidMesh& mesh, const StepSettings& s);
@@ -53,10 +55,7 @@ class FractionalStep final : public StepSolver {
   double relative_residual(const StepSettings& s) const;
   double velocity(int i, int c) const;  // node i's x (c = 0) or y velocity at the iterate
   void check_admissible(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
-  void commit(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes);
-  // fractional_sensitivity.cpp: the approximate DDM of the converged step (timed in the report)
-  // and its commit.
-  void solve_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes);
+  // fractional_sensitivity.cpp: the sensitivities' part of commit().
   void commit_sensitivities(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) const;
 
   StepReport report_;
