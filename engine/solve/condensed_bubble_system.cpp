@@ -69,16 +69,14 @@ void CondensedBubbleSystem::analyze() {
     l.pressure_diagonal[q] = factor_.block(u, u).base;
   }
   analyzed_ = true;
-  ++analyses_;
   l.first_of_node = std::move(first);
 }
 
-void CondensedBubbleSystem::factorize(const StepIterate& at, bool analyze) {
+void CondensedBubbleSystem::factorize(const StepElements& elements, const Eigen::VectorXd& mp, bool analyze) {
   // The symmetric matrix is added straight into the factor's storage, a triangle's blocks at
   // the places found by the analysis: no triplets to sort, no matrix to build.
   const StepNumbering& num = *num_;
-  const auto& mats = at.elements.matrices();
-  const Eigen::VectorXd& mp = at.residual.mp;
+  const auto& mats = elements.matrices();
   if (analyze) this->analyze();
   factor_.zero_values();
   double* lx = factor_.values();

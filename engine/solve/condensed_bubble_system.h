@@ -31,7 +31,7 @@ class CondensedBubbleSystem final : public StepLinearSystem {
  public:
   void begin(const mesh::FluidMesh& mesh, const StepSettings& s, const StepNumbering& num,
              const StepStructure& structure) override;
-  void factorize(const StepIterate& at, bool analyze) override;
+  void factorize(const StepElements& elements, const Eigen::VectorXd& mp, bool analyze) override;
   // The factorisation with the structure's part at the current iterate (the fluid's part stays
   // that of the last factorisation), unless that part barely changed; false when it cannot be
   // updated so.
@@ -42,7 +42,6 @@ class CondensedBubbleSystem final : public StepLinearSystem {
   // the factor: at the step's first factorisation, or for the DDM when the step made none.
   void analyze();
   bool analyzed() const { return analyzed_; }  // in this step
-  long analyses() const { return analyses_; }  // made so far (each a new layout)
   const SupernodalLdlt& factor() const { return factor_; }
   const CondensedLayout& layout() const { return layout_; }
 
@@ -54,7 +53,6 @@ class CondensedBubbleSystem final : public StepLinearSystem {
   SupernodalLdlt factor_;
   CondensedLayout layout_;
   bool analyzed_ = false;
-  long analyses_ = 0;
   std::vector<BubbleCondensation> bubbles_;  // of the last factorisation
   std::vector<Eigen::Triplet<double>> factor_structure_;  // the structure's entries last factorised
   std::vector<Eigen::Triplet<double>> structure_in_factor_;  // ... and those the factor holds now

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <string>
 #include <utility>
@@ -52,17 +51,9 @@ StepReport UnifiedStep::advance(const mesh::FluidMesh& mesh, const StepSettings&
     newton.record(report_.residual = relative_residual(s), elements_.any_inverted());
     if (!std::isfinite(report_.residual))
       throw StepFailure("Newton produced a non-finite residual at iteration " + std::to_string(newton.iteration()));
-    if (newton.converged()) {
-      static const bool log = std::getenv("PFEM_NEWTON_LOG") != nullptr;
-      if (log) std::fprintf(stderr, "NEWTON %d %d %s\n", newton.iteration(), report_.factorizations, newton_trace_.c_str());
-      break;
-    }
-    if (newton.out_of_iterations() || newton.hopeless()) {
-      static const bool log = std::getenv("PFEM_NEWTON_LOG") != nullptr;
-      if (log) std::fprintf(stderr, "FAILED %d %d %s\n", newton.iteration(), report_.factorizations, newton_trace_.c_str());
-      throw not_converged(newton);
-    }
-    newton_correction(mesh, s, newton);
+    if (newton.converged()) break;
+    if (newton.out_of_iterations() || newton.hopeless()) throw not_converged(newton);
+    newton_correction(s, newton.iteration() == 0, newton.stalled());
     report_.iterations = newton.iteration() + 1;
   }
   check_admissible(mesh, s, nodes);
@@ -87,7 +78,6 @@ void UnifiedStep::initial_iterate(const mesh::FluidMesh& mesh, const StepSetting
   structure_.begin(s.structure, num_, s.dt, s.gx, s.gy, nodes, v_);
   condensed_.begin(mesh, s, num_, structure_);
   global_.begin(mesh, s, num_, structure_);
-  jacobian_.begin(mesh, s, num_, structure_);
 }
 
 void UnifiedStep::assemble() {
@@ -120,49 +110,19 @@ double UnifiedStep::relative_residual(const StepSettings& s) const {
   return std::max(r_v, r_p);
 }
 
-void UnifiedStep::newton_correction(const mesh::FluidMesh& mesh, const StepSettings& s, const NewtonMonitor& newton) {
-  static const int mode = std::getenv("PFEM_NEWTON_MODE") ? std::atoi(std::getenv("PFEM_NEWTON_MODE")) : 0;
-  static const double slow_rate = std::getenv("PFEM_SLOW_RATE") ? std::atof(std::getenv("PFEM_SLOW_RATE")) : 0.1;
-  static const int slow_from = std::getenv("PFEM_SLOW_FROM") ? std::atoi(std::getenv("PFEM_SLOW_FROM")) : 1;
-  static const double switch_n = std::getenv("PFEM_SWITCH_N") ? std::atof(std::getenv("PFEM_SWITCH_N")) : 8;
-  static const double lu_n = std::getenv("PFEM_LU_N") ? std::atof(std::getenv("PFEM_LU_N")) : 0;
-  static const double lu_rate = std::getenv("PFEM_LU_RATE") ? std::atof(std::getenv("PFEM_LU_RATE")) : 0.1;
-  StepLinearSystem& newton_system = s.formulation == StepSettings::Formulation::kGlobalBubble
-                                        ? static_cast<StepLinearSystem&>(global_)
-                                        : condensed_;
-  const int it = newton.iteration();
-  const bool exact = mode != 0 && s.formulation == StepSettings::Formulation::kCondensedBubble;
+void UnifiedStep::newton_correction(const StepSettings& s, bool first, bool stalled) {
+  StepLinearSystem& system = s.formulation == StepSettings::Formulation::kGlobalBubble
+                                 ? static_cast<StepLinearSystem&>(global_)
+                                 : condensed_;
   auto t0 = Clock::now();
-  bool refactorize = false;
-  if (it == 0 && exact && mode == 4) {
-    condensed_.analyze();
-    system_ = &jacobian_;
-    refactorize = true;
-  } else if (it == 0) {
-    if (exact_steps_left_ > 0) --exact_steps_left_;
-    system_ = &newton_system;
-    refactorize = true;
-  } else if (exact && system_ != &jacobian_ && ((mode == 1 && it == 1) || (mode == 5 && it == 1 && exact_steps_left_ > 0) ||
-                                                 (mode == 5 && it >= slow_from && newton.rate() > slow_rate) || (mode == 2 && it >= slow_from && newton.rate() > slow_rate) ||
-                                                 (mode == 3 && it >= slow_from && (newton.rate() >= 1 || std::log(s.tolerance / newton.residual()) / std::log(newton.rate()) > switch_n)))) {
-    system_ = &jacobian_;
-    refactorize = true;
-    static const int keep = std::getenv("PFEM_KEEP") ? std::atoi(std::getenv("PFEM_KEEP")) : 20;
-    if (it > 1) exact_steps_left_ = keep;
-  } else if (system_ == &jacobian_) {
-    refactorize = lu_n > 0 ? (newton.rate() >= 1 || std::log(s.tolerance / newton.residual()) / std::log(newton.rate()) > lu_n) : newton.rate() > lu_rate;
-  } else {
-    refactorize = newton.stalled() || !system_->refresh_structure();
-  }
-  {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%s%.2g ", refactorize ? (system_ == &jacobian_ ? "J:" : "L:") : "", newton.residual());
-    if (it == 0) newton_trace_.clear();
-    newton_trace_ += buf;
-  }
-  if (refactorize) {
+  // One factorisation per step serves every iteration (the fluid's tangent changes only
+  // through the small geometry update); refactorise at the current iterate if convergence
+  // stalls. The structure's block follows every iterate: a fiber that yields or unloads
+  // changes its tangent fifty-fold, and a stale one held the yielding obstacle's steps at a
+  // contraction of 0.4 per iteration (20 iterations instead of 8).
+  if (first || stalled || !system.refresh_structure()) {
     try {
-      system_->factorize({mesh, s, num_, v_, p_, elements_, residual_, structure_, condensed_}, it == 0);
+      system.factorize(elements_, residual_.mp, first);
     } catch (const std::runtime_error& e) {
       throw StepFailure(e.what());
     }
@@ -171,7 +131,7 @@ void UnifiedStep::newton_correction(const mesh::FluidMesh& mesh, const StepSetti
   report_.factorize_seconds += seconds_since(t0);
   t0 = Clock::now();
   Eigen::VectorXd dv, dp;
-  system_->solve(residual_, dv, dp);
+  system.solve(residual_, dv, dp);
   v_ += dv;
   p_ += dp;
   report_.solve_seconds += seconds_since(t0);
@@ -182,7 +142,7 @@ void UnifiedStep::solve_sensitivities(const mesh::FluidMesh& mesh, const StepSet
   const bool newton_factorized =
       s.formulation == StepSettings::Formulation::kCondensedBubble && condensed_.analyzed();
   if (!condensed_.analyzed()) condensed_.analyze();  // the DDM's LU takes its analysis
-  sensitivity_.solve({{mesh, s, num_, v_, p_, elements_, residual_, structure_, condensed_}, newton_factorized, dvbn_},
+  sensitivity_.solve({mesh, s, num_, v_, p_, elements_, residual_, structure_, condensed_, newton_factorized, dvbn_},
                      nodes);
   report_.sensitivity_seconds = seconds_since(t0);
 }

@@ -41,7 +41,6 @@
 #include <cstdint>
 #include <span>
 #include <stdexcept>
-#include <string>
 #include <vector>
 
 #include "engine/fluid/mini_element.h"
@@ -49,7 +48,6 @@
 #include "engine/mesh/remesher.h"
 #include "engine/solve/bubble_history.h"
 #include "engine/solve/condensed_bubble_system.h"
-#include "engine/solve/exact_jacobian_system.h"
 #include "engine/solve/global_bubble_system.h"
 #include "engine/solve/newton_monitor.h"
 #include "engine/solve/node_state.h"
@@ -151,7 +149,7 @@ class UnifiedStep {
   double relative_residual(const StepSettings& s) const;
   // A Newton correction of the iterate, with the matrix refactorised at the first iterate and
   // where convergence stalled (else the last factorisation, its structure block refreshed).
-  void newton_correction(const mesh::FluidMesh& mesh, const StepSettings& s, const NewtonMonitor& newton);
+  void newton_correction(const StepSettings& s, bool first, bool stalled);
   // A converged state with an inverted triangle is no solution of the PFEM step: throws
   // StepFailure so that the step is retried shorter. A particle whose converged move crosses a
   // wall or beam is marked in hits_wall_ instead (its triangles may invert): it is removed. Sets
@@ -179,10 +177,6 @@ class UnifiedStep {
   StepResidual residual_;
   CondensedBubbleSystem condensed_;  // also the DDM's analysis with either formulation
   GlobalBubbleSystem global_;
-  ExactJacobianSystem jacobian_;
-  StepLinearSystem* system_ = nullptr;  // the one last factorised
-  std::string newton_trace_;
-  int exact_steps_left_ = 0;
   StepSensitivity sensitivity_;
 };
 

@@ -11,10 +11,9 @@ void GlobalBubbleSystem::begin(const mesh::FluidMesh& mesh, const StepSettings& 
   mesh_ = &mesh, s_ = &s, num_ = &num, structure_ = &structure;
 }
 
-void GlobalBubbleSystem::factorize(const StepIterate& at, bool analyze) {
+void GlobalBubbleSystem::factorize(const StepElements& elements, const Eigen::VectorXd& mp, bool analyze) {
   const StepNumbering& num = *num_;
-  const auto& mats = at.elements.matrices();
-  const Eigen::VectorXd& mp = at.residual.mp;
+  const auto& mats = elements.matrices();
   const int ne = static_cast<int>(mesh_->triangles.size());
   std::vector<Eigen::Triplet<double>> kt, gt;
   kt.reserve(64 * ne);

@@ -13,7 +13,7 @@ class GlobalBubbleSystem final : public StepLinearSystem {
  public:
   void begin(const mesh::FluidMesh& mesh, const StepSettings& s, const StepNumbering& num,
              const StepStructure& structure) override;
-  void factorize(const StepIterate& at, bool analyze) override;
+  void factorize(const StepElements& elements, const Eigen::VectorXd& mp, bool analyze) override;
   // Always true: CHOLMOD's factor has no trailing block to refresh, the structure's block stays
   // that of the last factorisation until convergence stalls.
   bool refresh_structure() override { return true; }

@@ -21,11 +21,9 @@ bool NewtonMonitor::hopeless() const {
   return (it >= 2 * kStallWindow && best_[it] > 0.5 * best_[it - kStallWindow]) || inverted_and_stagnating();
 }
 
-bool NewtonMonitor::stalled() const { return iteration() > 0 && rate() > 0.5; }
-
-double NewtonMonitor::rate() const {
+bool NewtonMonitor::stalled() const {
   const int it = iteration();
-  return it > 0 ? residuals_[it] / residuals_[it - 1] : 0.0;
+  return it > 0 && residuals_[it] > 0.5 * residuals_[it - 1];
 }
 
 }  // namespace pfem

@@ -43,8 +43,6 @@ class NewtonMonitor {
   bool inverted_and_stagnating() const;
   // This residual is above half the previous one.
   bool stalled() const;
-  // This residual over the previous one (the contraction of the last iteration).
-  double rate() const;
 
  private:
   double tolerance_;

@@ -1,11 +1,10 @@
 #include "engine/solve/step_jacobian.h"
 
-#include "engine/solve/condensed_bubble_system.h"
 #include "engine/solve/fluid_step.h"
 
 namespace pfem {
 
-void StepJacobian::assemble(const StepIterate& c) {
+void StepJacobian::assemble(const ConvergedStep& c) {
   const StepSettings& s = c.settings;
   const auto& mats = c.elements.matrices();
   const auto& geometries = c.elements.geometries();
@@ -26,7 +25,7 @@ void StepJacobian::assemble(const StepIterate& c) {
   }
 }
 
-void StepJacobian::layout(const StepIterate& c) {
+void StepJacobian::layout(const ConvergedStep& c) {
   // The LU takes the LDL^T's analysis, and each triangle's nine corner-pair blocks (both orders)
   // from the six the LDL^T has (a pair's reverse is the same place with the steps exchanged).
   const CondensedLayout& l = c.condensed.layout();
@@ -47,14 +46,13 @@ void StepJacobian::layout(const StepIterate& c) {
       if (a != cc) blocks_[e][3 * cc + a] = lu_.block(col0, row0, b.base, b.col_step, b.row_step);
     }
   }
-  laid_out_ = c.condensed.analyses();
 }
 
-void StepJacobian::factorize(const StepIterate& c) {
+void StepJacobian::factorize(const ConvergedStep& c) {
   // The elements' condensed blocks added straight into the LU's storage, as the Newton matrix's
-  // are into the LDL^T's. The layout is made once for each analysis of the condensed system
-  // (once a step; the Newton loop may refactorise).
-  if (laid_out_ != c.condensed.analyses()) layout(c);
+  // are into the LDL^T's. The layout is redone at every factorisation: the analysis is this
+  // step's (at most one factorisation a step).
+  layout(c);
   const StepNumbering& num = c.num;
   const std::vector<int>& slot = c.condensed.layout().slot;
   lu_.zero_values();
@@ -88,7 +86,7 @@ void StepJacobian::factorize(const StepIterate& c) {
   if (!lu_.factorize_values()) throw StepFailure("the Jacobian could not be factorised (non-finite pivot)");
 }
 
-Eigen::VectorXd StepJacobian::product(const StepIterate& c, const Eigen::VectorXd& x) const {
+Eigen::VectorXd StepJacobian::product(const ConvergedStep& c, const Eigen::VectorXd& x) const {
   const StepNumbering& num = c.num;
   Eigen::VectorXd y = Eigen::VectorXd::Zero(x.size());
   for (std::size_t e = 0; e < elements_.size(); ++e) {

@@ -9,7 +9,7 @@
 
 #include "engine/fluid/mini_sensitivity.h"
 #include "engine/solve/bubble_condensation.h"
-#include "engine/solve/step_iterate.h"
+#include "engine/solve/converged_step.h"
 #include "engine/solve/supernodal_lu.h"
 
 namespace pfem {
@@ -17,26 +17,25 @@ namespace pfem {
 class StepJacobian {
  public:
   // Every element's geometric derivatives, condensation and condensed block at the iterate.
-  void assemble(const StepIterate& c);
+  void assemble(const ConvergedStep& c);
   // Those blocks and the structure's tangent into the LU, on the condensed system's analysis,
   // factorised; throws StepFailure on a non-finite pivot.
-  void factorize(const StepIterate& c);
+  void factorize(const ConvergedStep& c);
   // The Jacobian's product with x (condensed unknowns).
-  Eigen::VectorXd product(const StepIterate& c, const Eigen::VectorXd& x) const;
+  Eigen::VectorXd product(const ConvergedStep& c, const Eigen::VectorXd& x) const;
   const SupernodalLu& lu() const { return lu_; }
   const std::vector<fluid::GeometricDerivatives>& geometric() const { return geometric_; }
   const std::vector<BubbleCondensation>& bubbles() const { return bubbles_; }
 
  private:
   // The LU's analysis (the LDL^T's) and where each triangle's blocks go in it.
-  void layout(const StepIterate& c);
+  void layout(const ConvergedStep& c);
 
   std::vector<fluid::GeometricDerivatives> geometric_;
   std::vector<BubbleCondensation> bubbles_;
   std::vector<CondensedElement> elements_;
   SupernodalLu lu_;
   std::vector<std::array<SupernodalLu::Block, 9>> blocks_;
-  long laid_out_ = -1;  // the condensed system's analysis the layout is for
 };
 
 }  // namespace pfem

@@ -8,7 +8,6 @@
 
 #include "engine/mesh/remesher.h"
 #include "engine/solve/step_elements.h"
-#include "engine/solve/step_iterate.h"
 #include "engine/solve/step_numbering.h"
 #include "engine/solve/step_structure.h"
 
@@ -22,9 +21,10 @@ class StepLinearSystem {
   // A new step: its mesh, settings, numbering and structure, which must outlive it.
   virtual void begin(const mesh::FluidMesh& mesh, const StepSettings& s, const StepNumbering& num,
                      const StepStructure& structure) = 0;
-  // Assembles and factorises the Newton matrix at the iterate; analyze at the step's first
-  // factorisation (a new pattern). Throws std::runtime_error when it cannot be factorised.
-  virtual void factorize(const StepIterate& at, bool analyze) = 0;
+  // Assembles and factorises the Newton matrix at the iterate of elements' last update, mp the
+  // pressure mass assembled there; analyze at the step's first factorisation (a new pattern).
+  // Throws std::runtime_error when it cannot be factorised.
+  virtual void factorize(const StepElements& elements, const Eigen::VectorXd& mp, bool analyze) = 0;
   // Brings the factorisation's structure block to the structure's tangent at the current
   // iterate where the formulation does so cheaply; false when the matrix must be refactorised.
   virtual bool refresh_structure() = 0;

@@ -181,7 +181,6 @@ void SupernodalLu::solve(Eigen::Ref<Eigen::MatrixXd> b) const {
   // dtrsm, its off-diagonal blocks by dgemm, the rows below gathered or scattered once.
   const int m = static_cast<int>(b.cols());
   if (m == 0) return;
-  if (m == 1) return solve_column(b.col(0));
   Eigen::MatrixXd y(n_, m), t(max_rows_, m);
   for (int k = 0; k < n_; ++k) y.row(k) = b.row(perm_[k]);
   const int ldy = n_, ldt = max_rows_;
@@ -209,52 +208,6 @@ void SupernodalLu::solve(Eigen::Ref<Eigen::MatrixXd> b) const {
     blas::trsm('L', 'U', 'N', 'N', nc, m, xs, ns, y.data() + k1, ldy);
   }
   for (int k = 0; k < n_; ++k) b.row(perm_[k]) = y.row(k);
-}
-
-void SupernodalLu::solve_column(Eigen::Ref<Eigen::VectorXd> b) const {
-  // As solve() for one column, by columns of the triangles and dot products (a Newton
-  // correction: per-supernode BLAS calls on a single column cost more than their arithmetic).
-  using Column = Eigen::Map<Eigen::VectorXd>;
-  using ConstColumn = Eigen::Map<const Eigen::VectorXd>;
-  Eigen::VectorXd buffer(n_), t_buffer(max_rows_);
-  double* y = buffer.data();
-  double* t = t_buffer.data();
-  for (int k = 0; k < n_; ++k) y[k] = b[perm_[k]];
-  // L y = P b.
-  for (int s = 0; s < nsuper_; ++s) {
-    const int k1 = super_[s], nc = nscol(s), ns = nsrow(s), rest = ns - nc;
-    const int* rows = ls_.data() + pi_[s] + nc;
-    const double* xs = lx_.data() + px_[s];
-    double* ys = y + k1;
-    for (int j = 0; j < nc; ++j)
-      if (pivot_[k1 + j] != j) std::swap(ys[j], ys[pivot_[k1 + j]]);
-    Column tr(t, rest);
-    tr.setZero();
-    for (int j = 0; j < nc; ++j) {
-      const double* col = xs + static_cast<long>(j) * ns;
-      Column(ys + j + 1, nc - j - 1) -= ys[j] * ConstColumn(col + j + 1, nc - j - 1);
-      tr += ys[j] * ConstColumn(col + nc, rest);
-    }
-    for (int i = 0; i < rest; ++i) y[rows[i]] -= t[i];
-  }
-  // U x = y, backwards: U's rows beyond the diagonal block (stored transposed), then its
-  // diagonal block by columns.
-  for (int s = nsuper_ - 1; s >= 0; --s) {
-    const int k1 = super_[s], nc = nscol(s), ns = nsrow(s), rest = ns - nc;
-    const int* rows = ls_.data() + pi_[s] + nc;
-    const double* xs = lx_.data() + px_[s];
-    const double* us = ux_.data() + px_[s];
-    double* ys = y + k1;
-    for (int i = 0; i < rest; ++i) t[i] = y[rows[i]];
-    const ConstColumn tr(t, rest);
-    for (int j = 0; j < nc; ++j) ys[j] -= ConstColumn(us + nc + static_cast<long>(j) * ns, rest).dot(tr);
-    for (int j = nc - 1; j >= 0; --j) {
-      const double* col = xs + static_cast<long>(j) * ns;
-      ys[j] /= col[j];
-      Column(ys, j) -= ys[j] * ConstColumn(col, j);
-    }
-  }
-  for (int k = 0; k < n_; ++k) b[perm_[k]] = y[k];
 }
 
 }  // namespace pfem

@@ -58,7 +58,6 @@ class SupernodalLu : public SupernodalFactor {
   void update(int d, int s, const UpdateRows& rows) override;
   bool factor(int s) override;
   void allocate() override;
-  void solve_column(Eigen::Ref<Eigen::VectorXd> b) const;
   // In lx_ if >= 0, else in ux_ at -1 - it.
   long entry_destination(int row, int col) const override;
 
