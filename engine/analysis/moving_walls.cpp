@@ -43,15 +43,17 @@ void place_moving_walls(const Problem& problem, double t, const WallKinematics& 
       const motion::Sensitive s = signal_at(m, t, k);
       for (const int i : m.nodes) {
         const motion::Placement q = motion::place(m, s, nodes.x0[i], nodes.y0[i]);
+        const std::uint8_t free = problem.slip_of(i);
+        const bool set_x = free != kSlipX, set_y = free != kSlipY;
         if (k < 0) {
-          nodes.x[i] = q.x, nodes.vx[i] = step.velocity.empty() ? 0.0 : step.velocity[2 * i];
-          nodes.y[i] = q.y, nodes.vy[i] = step.velocity.empty() ? 0.0 : step.velocity[2 * i + 1];
+          if (set_x) nodes.x[i] = q.x, nodes.vx[i] = step.velocity.empty() ? 0.0 : step.velocity[2 * i];
+          if (set_y) nodes.y[i] = q.y, nodes.vy[i] = step.velocity.empty() ? 0.0 : step.velocity[2 * i + 1];
           continue;
         }
         double* d = nodes.sensitivity(i, k);
         const std::size_t at = (static_cast<std::size_t>(i) * P + k) * 2;
-        d[NodeState::kDx] = q.dx, d[NodeState::kDvx] = step.sensitivity.empty() ? 0.0 : step.sensitivity[at];
-        d[NodeState::kDy] = q.dy, d[NodeState::kDvy] = step.sensitivity.empty() ? 0.0 : step.sensitivity[at + 1];
+        if (set_x) d[NodeState::kDx] = q.dx, d[NodeState::kDvx] = step.sensitivity.empty() ? 0.0 : step.sensitivity[at];
+        if (set_y) d[NodeState::kDy] = q.dy, d[NodeState::kDvy] = step.sensitivity.empty() ? 0.0 : step.sensitivity[at + 1];
       }
     }
   }

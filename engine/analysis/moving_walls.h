@@ -20,7 +20,8 @@ struct WallKinematics {
 WallKinematics wall_kinematics(const Problem& problem, const NodeState& nodes, double t0, double t1);
 
 // Puts every moving wall's node where its motion has it at t, with its position sensitivities,
-// and gives it the velocity of the step that ended there (`step`; none: 0).
+// and gives it the velocity of the step that ended there (`step`; none: 0); a slip node's free
+// component (along the wall) is the water's and stays, as on a fixed slip wall.
 void place_moving_walls(const Problem& problem, double t, const WallKinematics& step, NodeState& nodes);
 
 // The sliding wall nodes at time t (mesh/contact_line.h): a moving wall's home and tangent carried

@@ -326,9 +326,6 @@ Problem build_validated_problem(const pfem::v1::Model& model, const std::vector<
   std::vector<std::vector<int>> wall_nodes;
   auto segments = add_walls(model, pb.h, pb.nodes, pb.wall_segments, pb, wall_pieces, wall_nodes);
   pb.moving_walls = build_wall_motions(with_values, wall_nodes, seeds);
-  pb.moving_node.assign(pb.nodes.size(), 0);
-  for (const auto& m : pb.moving_walls)
-    for (const int i : m.nodes) pb.moving_node[i] = 1;
   std::map<std::string, std::vector<std::array<std::int32_t, 2>>> boundary_pieces;  // walls, then beams
   std::map<std::string, std::array<double, 2>> boundary_origin;
   for (int w = 0; w < model.walls_size(); ++w) {

@@ -33,11 +33,12 @@ class MotionChecker {
 
   std::vector<FieldError> run() {
     const auto& m = wall_.motion();
-    // A slip paddle's nodes carry the water up and down it with a free tangential velocity; its
-    // waves came out 14 % below Biesel's (kh = 0.68, 3 d from the paddle; a no-slip paddle: 2 %).
-    if (wall_.slip())
-      errors_.push_back({wall_path_ + ".slip", "a moving wall must be no-slip (a slip paddle makes waves 14 % too low)"});
     const bool flap = m.kind() == "flap";
+    // A slip wall's node has one free velocity component, x or y: its pieces stay horizontal or
+    // vertical. A piston translates and keeps them so; a flap turns them.
+    if (flap && wall_.slip())
+      errors_.push_back({wall_path_ + ".slip", "a flap must be no-slip (it turns its wall, and a slip wall's pieces "
+                                               "must stay horizontal or vertical)"});
     if (!flap && m.kind() != "piston") error("kind", "must be \"piston\" or \"flap\" (got \"" + m.kind() + "\")");
     if (!flap && m.has_direction()) {
       if (!is_finite(m.direction().x()) || !is_finite(m.direction().y())) error("direction", "must be finite");

@@ -68,13 +68,12 @@ struct Problem {
   std::vector<mesh::SlidingWallNode> sliding_walls;
   // Per node: 0, or the one free velocity component of a slip wall's node (StepSettings::slip).
   std::vector<std::uint8_t> wall_slip;
+  std::uint8_t slip_of(std::size_t i) const { return i < wall_slip.size() ? wall_slip[i] : 0; }
   std::vector<std::vector<int>> wall_neighbours;
   // Walls with a prescribed motion (wavemakers), and per sliding wall node the index of its
   // moving wall (-1: a fixed wall).
   std::vector<motion::WallMotion> moving_walls;
   std::vector<int> sliding_motion;
-  std::vector<std::uint8_t> moving_node;  // per node: 1 on a moving wall
-  bool moves(std::size_t i) const { return i < moving_node.size() && moving_node[i]; }
   std::vector<std::array<std::int32_t, 2>> beam_segments;  // node pairs of every beam element
   std::optional<structure::StructureModel> structure;     // with its nodes in `nodes`:
   std::vector<int> structure_nodes;                        // node index of each structure node

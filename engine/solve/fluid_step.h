@@ -79,7 +79,9 @@ struct StepSettings {
   // Per node (empty: none): kSlipX or kSlipY for a node of a slip wall whose x or y velocity is
   // free (a horizontal or a vertical wall: no normal velocity). Within a step it moves along
   // its wall with the water; it returns to its place before the next remeshing (see
-  // mesh/contact_line.h), keeping its velocity.
+  // mesh/contact_line.h), keeping its velocity, or slides to a contact particle's foot and takes
+  // that particle's velocity along the wall. On a moving wall (a piston) the other component is
+  // the wall's (wall_velocity).
   std::span<const std::uint8_t> slip;
   // Walls with a prescribed motion (empty: none): per node, x and y (2 entries), the velocity
   // over the step of a moving wall's node, 0 elsewhere; it takes the place of v = 0 where the

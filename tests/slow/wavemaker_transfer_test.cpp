@@ -1,7 +1,8 @@
 // Wavemakers against linear and solitary-wave theory in a flume of constant depth d = 0.1 m at
-// water's viscosity (h = d / 10, the flap's d / 20; slip floor, no-slip paddle, far wall at the
-// flume's end):
-//  - a piston at kh = 0.7, 1.2 and 1.8, and a flap hinged on the floor at kh = 1.2: the first
+// water's viscosity (h = d / 10, the flap's d / 20; slip floor, no-slip paddle unless said, far
+// wall at the flume's end):
+//  - a piston at kh = 0.7, 1.2 and 1.8 (no-slip and slip paddle), and a flap hinged on the floor
+//    at kh = 1.2: the first
 //    harmonic of the wave gauge 3 d from the paddle, over four periods after the ramp-up and
 //    before the far wall's reflection returns, against Biesel's transfer function (within 5 %),
 //    and the wave's period against the paddle's (within 1 %);
@@ -43,9 +44,10 @@ double group_velocity(double w) {
 }
 
 // A flume of still water kD deep from the paddle at x = 0 to a wall at x = length, particles at
-// spacing h; the floor runs on 0.1 m behind the paddle. motion: the paddle's WallMotion as JSON.
+// spacing h; the floor runs on 0.1 m behind the paddle. motion: the paddle's WallMotion as JSON;
+// slip: whether the paddle is a slip wall.
 pfem::v1::Model flume(double length, double h, const std::string& motion, double dt, double t_end,
-                      const std::vector<double>& gauges) {
+                      const std::vector<double>& gauges, bool slip = false) {
   std::string recorders;
   for (std::size_t g = 0; g < gauges.size(); ++g) {
     char r[160];
@@ -58,10 +60,10 @@ pfem::v1::Model flume(double length, double h, const std::string& motion, double
     "name": "flume", "fluid": {"rho": 1000.0, "mu": 0.001, "kappa": 2.15e9}, "mesh": {"h": %.17g},
     "fluid_regions": [{"rectangle": {"min": {"x": 0, "y": 0}, "max": {"x": %.17g, "y": %.17g}}}],
     "walls": [{"name": "floor", "slip": true, "points": [{"x": -0.1, "y": 0}, {"x": %.17g, "y": 0}, {"x": %.17g, "y": 0.2}]},
-              {"name": "paddle", "points": [{"x": 0, "y": 0}, {"x": 0, "y": 0.2}], "motion": %s}],
+              {"name": "paddle", "slip": %s, "points": [{"x": 0, "y": 0}, {"x": 0, "y": 0.2}], "motion": %s}],
     "analysis": {"dt": %.17g, "t_end": %.17g},
     "recorders": [%s]
-  })", h, length, kD, length, length, motion.c_str(), dt, t_end, recorders.c_str());
+  })", h, length, kD, length, length, slip ? "true" : "false", motion.c_str(), dt, t_end, recorders.c_str());
   return parse_model_json(json);
 }
 
@@ -88,8 +90,8 @@ Harmonic first_harmonic(const Histories& h, int col, double T, double t0, int n)
 }
 
 // A regular wave of kh made by a sinusoid of stroke S ramped up over two periods, measured at 3 d,
-// with particles at spacing h.
-void expect_biesel(double kh, bool flap, double h) {
+// with particles at spacing h (slip: a slip paddle).
+void expect_biesel(double kh, bool flap, double h, bool slip = false) {
   const double k = kh / kD, w = std::sqrt(kG * k * std::tanh(kh)), T = 2 * M_PI / w, cg = group_velocity(w);
   const double ratio = flap ? biesel_flap(kh) : biesel_piston(kh);
   const double H = 0.004;  // a linear wave: H / L below 0.01 at every kh here
@@ -101,11 +103,11 @@ void expect_biesel(double kh, bool flap, double h) {
                 flap ? R"({"kind": "flap", "hinge": {"x": 0, "y": 0}, "arm": %.17g, "sinusoid": {"stroke": %.17g, "period": %.17g, "ramp": %.17g}})"
                      : R"({"kind": "piston", "sinusoid": {"stroke": %.17g, "period": %.17g, "ramp": %.17g}})",
                 flap ? kD : S, flap ? S : T, flap ? T : 2 * T, 2 * T);
-  const RunResult r = run(flume(length, h, motion, T / 1000, t_end, {x}), RunOptions{});
+  const RunResult r = run(flume(length, h, motion, T / 1000, t_end, {x}, slip), RunOptions{});
   ASSERT_EQ(r.summary.status, RunStatus::kCompleted) << r.summary.message;
   const Harmonic m = first_harmonic(r.responses, 0, T, t0, 4);
-  std::printf("%s kh %.2f (T %.3f s, flume %.2f m): H %.5f m, Biesel %.5f (ratio %.3f), period %.4f s (%+.2f %%)\n",
-              flap ? "flap" : "piston", kh, T, length, m.height, ratio * S, m.height / (ratio * S), m.period,
+  std::printf("%s%s kh %.2f (T %.3f s, flume %.2f m): H %.5f m, Biesel %.5f (ratio %.3f), period %.4f s (%+.2f %%)\n",
+              slip ? "slip " : "", flap ? "flap" : "piston", kh, T, length, m.height, ratio * S, m.height / (ratio * S), m.period,
               100 * (m.period / T - 1));
   EXPECT_NEAR(m.height / (ratio * S), 1.0, 0.05);
   EXPECT_NEAR(m.period / T, 1.0, 0.01);
@@ -114,6 +116,10 @@ void expect_biesel(double kh, bool flap, double h) {
 TEST(WavemakerTransfer, PistonAtKh0p7) { expect_biesel(0.7, false, kD / 10); }
 TEST(WavemakerTransfer, PistonAtKh1p2) { expect_biesel(1.2, false, kD / 10); }
 TEST(WavemakerTransfer, PistonAtKh1p8) { expect_biesel(1.8, false, kD / 10); }
+// A slip paddle: the water's vertical velocity at it is free, as in Biesel's inviscid theory.
+TEST(WavemakerTransfer, SlipPistonAtKh0p7) { expect_biesel(0.7, false, kD / 10, true); }
+TEST(WavemakerTransfer, SlipPistonAtKh1p2) { expect_biesel(1.2, false, kD / 10, true); }
+TEST(WavemakerTransfer, SlipPistonAtKh1p8) { expect_biesel(1.8, false, kD / 10, true); }
 // The flap's velocity falls linearly to the hinge: at h = d / 10 its wave came out 7.2 % low.
 TEST(WavemakerTransfer, FlapAtKh1p2) { expect_biesel(1.2, true, kD / 20); }
 

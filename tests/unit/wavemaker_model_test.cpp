@@ -68,10 +68,29 @@ TEST(WavemakerModel, AHingeOffTheWall) {
   EXPECT_TRUE(validate_model(m).empty()) << describe(validate_model(m));
 }
 
-TEST(WavemakerModel, AMovingWallCannotSlip) {
+TEST(WavemakerModel, ASlipPistonIsValidASlipFlapIsNot) {
   auto m = piston_tank();
   m.mutable_walls(1)->set_slip(true);
-  expect_single_error(m, "walls[1].slip", "a moving wall must be no-slip");
+  EXPECT_TRUE(validate_model(m).empty()) << describe(validate_model(m));
+  auto* motion = paddle_motion(m);
+  motion->set_kind("flap");
+  motion->set_arm(0.1);
+  motion->mutable_hinge()->set_x(0.0);
+  expect_single_error(m, "walls[1].slip", "a flap must be no-slip");
+}
+
+TEST(WavemakerModel, ASlipPistonsInnerNodesHaveTheirVerticalVelocityFree) {
+  auto m = piston_tank();
+  m.mutable_walls(1)->set_slip(true);
+  const Problem pb = build_problem(m);
+  ASSERT_EQ(pb.moving_walls.size(), 1u);
+  int free_y = 0;
+  for (const int i : pb.moving_walls[0].nodes) {
+    const bool end = pb.nodes.y[i] == 0.0 || pb.nodes.y[i] == 0.2;
+    EXPECT_EQ(pb.slip_of(i), end ? 0 : kSlipY) << "node at y = " << pb.nodes.y[i];
+    free_y += pb.slip_of(i) == kSlipY;
+  }
+  EXPECT_EQ(free_y, 19);  // the ends (the foot on the floor, the top) are corners: v the paddle's
 }
 
 TEST(WavemakerModel, AMotionThatCarriesTheWallOutOfTheDomain) {
