@@ -2,7 +2,8 @@
 // What the time loop (engine/analysis/simulation.cpp) asks of the solver of one PFEM step: the
 // response on a fixed mesh, its sensitivities, the commit of both to the nodes (three calls, as
 // the loop reads in docs/design.md: response -> DDM -> commit), a report of its work, and saving
-// or restoring what it hands to the next step. A model's analysis.formulation picks the implementation:
+// or restoring what it hands to the next step. A model's analysis.formulation picks the
+// implementation:
 //  - "quasi-incompressible" (default): UnifiedStep (fluid_step.h), Newton on the unified
 //    velocity-pressure system of pdot/kappa + div v = 0, with the exact DDM (theory §4, §5);
 //  - "incompressible": FractionalStep (fractional_step.h), div v = 0 by Zhu & Scott's improved
