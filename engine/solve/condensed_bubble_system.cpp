@@ -130,7 +130,6 @@ bool CondensedBubbleSystem::refresh_structure() {
   return factor_.update_last(delta);
 }
 
-
 void CondensedBubbleSystem::solve(const StepResidual& r, Eigen::VectorXd& dv, Eigen::VectorXd& dp) const {
   Eigen::MatrixXd dvs, dps;
   const auto solve = [this](const Eigen::MatrixXd& b) {
