@@ -159,19 +159,26 @@ int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& 
 }
 
 // New particles at the middle of the edges that have grown too long (see edges_to_split), with
-// the mean velocity and pressure of the edge's ends (and so the mean sensitivities).
+// the mean velocity and pressure of the edge's ends (and so the mean sensitivities); at a wall or
+// beam node, the pressure of the edge's side of its lines.
 int insert_particles(const mesh::FluidMesh& mesh, const Problem& problem, NodeState& nodes) {
   if (problem.insertion_length <= 0.0) return 0;
+  auto walls = problem.wall_segments;
+  walls.insert(walls.end(), problem.beam_segments.begin(), problem.beam_segments.end());
   const auto edges = mesh::edges_to_split(mesh, nodes.x, nodes.y, nodes.kind, problem.insertion_length * problem.h,
-                                          problem.interior_insertion_length * problem.h);
-  for (const auto& [a, b] : edges) {
+                                          problem.interior_insertion_length * problem.h, {walls, 0.5 * problem.h});
+  for (const auto& [a, b, side] : edges) {
+    const bool multi = mesh.multi_sided(b);
     const int i = nodes.add(0.5 * (nodes.x[a] + nodes.x[b]), 0.5 * (nodes.y[a] + nodes.y[b]), mesh::NodeKind::Fluid,
                             0.5 * (nodes.vx[a] + nodes.vx[b]), 0.5 * (nodes.vy[a] + nodes.vy[b]));
     nodes.x0[i] = nodes.x[i], nodes.y0[i] = nodes.y[i];  // displacements count from its birth
-    nodes.p[i] = 0.5 * (nodes.p[a] + nodes.p[b]);
-    for (int k = 0; k < nodes.num_params; ++k)
-      for (int f = 0; f < NodeState::kDpSide; ++f)  // a particle has one side
-        nodes.sensitivity(i, k)[f] = 0.5 * (nodes.sensitivity(a, k)[f] + nodes.sensitivity(b, k)[f]);
+    nodes.p[i] = 0.5 * (nodes.p[a] + nodes.pressure(b, multi, side));
+    for (int k = 0; k < nodes.num_params; ++k) {
+      const double *da = nodes.sensitivity(a, k), *db = nodes.sensitivity(b, k);
+      double* d = nodes.sensitivity(i, k);
+      for (const int f : {NodeState::kDx, NodeState::kDy, NodeState::kDvx, NodeState::kDvy}) d[f] = 0.5 * (da[f] + db[f]);
+      d[NodeState::kDp] = 0.5 * (da[NodeState::kDp] + nodes.pressure_sensitivity(b, multi, side, k));
+    }
   }
   return static_cast<int>(edges.size());
 }

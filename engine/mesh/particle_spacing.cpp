@@ -1,5 +1,6 @@
 #include "engine/mesh/particle_spacing.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pfem::mesh {
@@ -41,28 +42,46 @@ int remove_close_particles(const FluidMesh& mesh, std::span<const double> x,
   return removed;
 }
 
-std::vector<std::array<std::int32_t, 2>> edges_to_split(const FluidMesh& mesh, std::span<const double> x,
-                                                        std::span<const double> y,
-                                                        std::span<const NodeKind> kind, double surface_length,
-                                                        double interior_length) {
-  std::vector<std::array<std::int32_t, 2>> edges;
+namespace {
+// The distance from (px, py) to the segment from (ax, ay) to (bx, by).
+double distance_to_segment(double px, double py, double ax, double ay, double bx, double by) {
+  const double ex = bx - ax, ey = by - ay, e2 = ex * ex + ey * ey;
+  const double s = e2 > 0.0 ? std::clamp(((px - ax) * ex + (py - ay) * ey) / e2, 0.0, 1.0) : 0.0;
+  return std::hypot(px - ax - s * ex, py - ay - s * ey);
+}
+}  // namespace
+
+std::vector<SplitEdge> edges_to_split(const FluidMesh& mesh, std::span<const double> x, std::span<const double> y,
+                                      std::span<const NodeKind> kind, double surface_length, double interior_length,
+                                      const WallClearance& walls) {
+  std::vector<std::vector<std::int32_t>> along(x.size());  // per wall node: the other ends of its segments
+  for (const auto& [a, b] : walls.segments) along[a].push_back(b), along[b].push_back(a);
+  // Whether the middle of particle p's edge to wall node w keeps clear of w's segments.
+  const auto clear_of_walls = [&](std::int32_t p, std::int32_t w) {
+    const double mx = 0.5 * (x[p] + x[w]), my = 0.5 * (y[p] + y[w]);
+    for (const std::int32_t u : along[w])
+      if (distance_to_segment(mx, my, x[w], y[w], x[u], y[u]) < walls.distance) return false;
+    return !along[w].empty();
+  };
+  std::vector<SplitEdge> edges;
   std::vector<std::uint8_t> used(x.size(), 0);
   const double surface2 = surface_length * surface_length, interior2 = interior_length * interior_length;
-  for (const auto& t : mesh.triangles) {
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (int e = 0; e < 3; ++e) {
-      const std::int32_t a = t[e], b = t[(e + 1) % 3];
-      if (used[a] || used[b] || kind[a] == NodeKind::Removed || kind[b] == NodeKind::Removed) continue;
-      // Particle-particle edges only: an edge from a particle to a wall node can run along
-      // the wall, and its middle would sit on the wall.
-      if (kind[a] != NodeKind::Fluid || kind[b] != NodeKind::Fluid) continue;
+      const int ca = (kind[mesh.triangles[t][e]] == NodeKind::Fluid) ? e : (e + 1) % 3;  // the particle's corner
+      const int cb = ca == e ? (e + 1) % 3 : e;
+      const std::int32_t a = mesh.triangles[t][ca], b = mesh.triangles[t][cb];
+      if (used[a] || used[b] || kind[a] != NodeKind::Fluid || kind[b] == NodeKind::Removed) continue;
       // Not along the free surface: a particle there would let the alpha test close gaps in
       // the surface and add water.
       if (mesh.free_surface[a] && mesh.free_surface[b]) continue;
       const double dx = x[a] - x[b], dy = y[a] - y[b];
       const bool interior = !mesh.free_surface[a] && !mesh.free_surface[b];
       if (dx * dx + dy * dy <= (interior ? interior2 : surface2)) continue;
+      const bool wall = kind[b] != NodeKind::Fluid;
+      if (wall && (!interior || !clear_of_walls(a, b))) continue;
       used[a] = used[b] = 1;
-      edges.push_back({a, b});
+      edges.push_back({a, b, wall ? mesh.side(t, cb) : 0});
     }
   }
   return edges;

@@ -25,8 +25,12 @@ struct Quad {
     mesh.in_mesh.assign(4, 1);
     mesh.free_surface.assign(4, 0);
   }
-  std::vector<Edge> split(double surface_length, double interior_length) const {
-    return pfem::mesh::edges_to_split(mesh, x, y, kind, surface_length, interior_length);
+  std::vector<std::array<std::int32_t, 2>> walls;  // wall segments
+  std::vector<Edge> split(double surface_length, double interior_length, double clearance = 0.0) const {
+    std::vector<Edge> out;
+    for (const auto& e : pfem::mesh::edges_to_split(mesh, x, y, kind, surface_length, interior_length, {walls, clearance}))
+      out.push_back({e.a, e.b});
+    return out;
   }
 };
 
@@ -50,12 +54,24 @@ TEST(ParticleSpacing, EdgesTouchingTheSurfaceUseTheSurfaceLength) {
   EXPECT_TRUE(q.split(1.0, 1.0).empty());
 }
 
-TEST(ParticleSpacing, EdgesToWallNodesAreNeverSplit) {
+// 0 and 2 on a wall along x = 0 (the segment 0-2), particles 1 and 3 at x = 2.5: the edges 1-0
+// (2.5), 1-2 (2.55) and 3-2 (2.5) have their middles 1.25 from the wall.
+TEST(ParticleSpacing, EdgesToWallNodesAreSplitWhereTheirMiddleIsClearOfTheWall) {
   Quad q(2.5);
-  q.kind[0] = q.kind[2] = NodeKind::Wall;  // 0-1 and 1-2 end at a wall node; 2-3 too
-  EXPECT_TRUE(q.split(1.6, 2.0).empty());
-  q.kind[2] = NodeKind::Fluid;  // 2-3 (2.5) between particles; 1-2 (2.55) first in the traversal
-  EXPECT_EQ(q.split(1.6, 2.0), (std::vector<Edge>{{1, 2}}));
+  q.kind[0] = q.kind[2] = NodeKind::Wall;
+  q.walls = {{0, 2}};
+  // the particle first; 1-0 takes 1 before 1-2 comes
+  EXPECT_EQ(q.split(1.6, 2.0, 1.2), (std::vector<Edge>{{1, 0}, {3, 2}}));
+  EXPECT_TRUE(q.split(1.6, 2.0, 1.3).empty());  // the middles 1.25 from the wall: too near
+  EXPECT_TRUE(q.split(1.6, 2.6, 1.2).empty());  // no edge longer than 2.6
+  q.mesh.free_surface[3] = 1;                   // 3 on the surface: its edge to the wall stays whole
+  EXPECT_EQ(q.split(1.6, 2.0, 1.2), (std::vector<Edge>{{1, 0}}));
+  q.mesh.free_surface[3] = 0;
+  q.walls.clear();                              // no segment tells where the wall runs
+  EXPECT_TRUE(q.split(1.6, 2.0, 1.2).empty());
+  // A second wall piece at node 2 along the diagonal 2-1: the middle of 3-2 is 0.245 from it.
+  q.walls = {{0, 2}, {2, 1}};
+  EXPECT_EQ(q.split(1.6, 2.0, 1.2), (std::vector<Edge>{{1, 0}}));
 }
 
 TEST(ParticleSpacing, CloseParticlesAreRemovedHigherIndexOrNextToAWall) {
