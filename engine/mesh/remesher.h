@@ -44,7 +44,9 @@ struct RemeshOptions {
   // 0. Empty (the default): no previous mesh. A triangle whose three nodes are all flagged
   // spans a gap between free surfaces (spray, a jet against a wall or the pool, an air pocket):
   // it is kept only when its circumradius <= boundary_alpha * h, so that gaps close only where
-  // the surfaces have really met and water is not created out of air.
+  // the surfaces have really met and water is not created out of air. A triangle whose three
+  // nodes were in the previous mesh (previous_triangles) and none on its boundary is kept up to
+  // 1.25 * alpha * h: it is inside water that air cannot reach within a step.
   std::span<const std::uint8_t> previous_boundary{};
   double boundary_alpha = 0.0;  // 0: same as alpha; above alpha counts as alpha; < 0 throws
   // The triangles of the previous mesh, the nodes' velocities [m/s] and the coming step's dt [s]

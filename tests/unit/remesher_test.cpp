@@ -384,6 +384,31 @@ TEST(Remesher, GapBetweenPreviousBoundaryNodesNeedsTheBoundaryAlpha) {
   EXPECT_THROW(pfem::mesh::remesh(n.x, n.y, n.kind, options), std::invalid_argument);
 }
 
+// A triangle whose three nodes were inside the previous mesh (in a previous triangle, none on
+// its boundary) passes at 1.25 alpha: circumradius 0.7071 is kept at alpha = 0.6 (0.75), dropped
+// at 0.56 (0.70); with a node on the previous boundary or out of the previous mesh, alpha holds.
+TEST(Remesher, TrianglesInsideThePreviousWaterPassAtAQuarterMoreAlpha) {
+  Nodes n;
+  n.add(0.0, 0.0, NodeKind::Fluid);
+  n.add(1.0, 0.0, NodeKind::Fluid);
+  n.add(0.0, -1.0, NodeKind::Fluid);  // circumradius sqrt(2)/2 = 0.7071
+  RemeshOptions options{1.0, 0.6};
+  EXPECT_EQ(pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles.size(), 0u);  // no previous mesh
+  const std::vector<std::array<std::int32_t, 3>> previous{{0, 1, 2}}, without_2{{0, 1, 0}};
+  const std::vector<std::uint8_t> none{0, 0, 0}, one{0, 1, 0};
+  options.previous_triangles = previous;
+  options.previous_boundary = none;
+  EXPECT_EQ(pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles.size(), 1u);
+  options.alpha = 0.56;
+  EXPECT_EQ(pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles.size(), 0u);
+  options.alpha = 0.6;
+  options.previous_boundary = one;
+  EXPECT_EQ(pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles.size(), 0u);
+  options.previous_boundary = none;
+  options.previous_triangles = without_2;
+  EXPECT_EQ(pfem::mesh::remesh(n.x, n.y, n.kind, options).triangles.size(), 0u);
+}
+
 TEST(Remesher, CoincidentPointsKeepTheLowestIndex) {
   const int nx = 5, ny = 4;
   const double h = 0.1;
@@ -686,13 +711,16 @@ TEST(Remesher, AVoidAgainstABeamInWaterWetAllRoundAtThePreviousStepIsWater) {
   for (const int k : {2 * nx + 4, 2 * nx + 5, 3 * nx + 5, 4 * nx + 4, 4 * nx + 5}) pocket[k] = 1;
   options.previous_boundary = pocket;
   EXPECT_LT(area(options), 36.0 - 0.5);
-  // The same particle gone in open water (no beam): left to the flow.
+  // The same particle gone in open water (no beam): its void's triangles (R = 1) pass at 1.25
+  // alpha (1.125), their nodes all inside the previous water; flagged as an air pocket, it stays.
   Nodes open = fluid_grid(nx, ny, h);
   RemeshOptions plain{h, alpha};
   const FluidMesh wet = open.remesh(h, alpha);
   plain.previous_triangles = wet.triangles;
   plain.previous_boundary = wet.free_surface;
   open.kind[3 * nx + 4] = NodeKind::Removed;
+  EXPECT_NEAR(total_area(open, pfem::mesh::remesh(open.x, open.y, open.kind, plain)), 36.0, 1e-12);
+  plain.previous_boundary = pocket;
   EXPECT_LT(total_area(open, pfem::mesh::remesh(open.x, open.y, open.kind, plain)), 36.0 - 0.5);
 }
 
