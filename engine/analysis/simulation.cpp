@@ -1,12 +1,14 @@
 #include "engine/analysis/simulation.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <span>
 #include <sstream>
 
 #include "engine/analysis/moving_walls.h"
@@ -161,12 +163,12 @@ int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& 
 // New particles at the middle of the edges that have grown too long (see edges_to_split), with
 // the mean velocity and pressure of the edge's ends (and so the mean sensitivities); at a wall or
 // beam node, the pressure of the edge's side of its lines.
-int insert_particles(const mesh::FluidMesh& mesh, const Problem& problem, NodeState& nodes) {
+// lines: the wall and beam segments.
+int insert_particles(const mesh::FluidMesh& mesh, const Problem& problem,
+                     std::span<const std::array<std::int32_t, 2>> lines, NodeState& nodes) {
   if (problem.insertion_length <= 0.0) return 0;
-  auto walls = problem.wall_segments;
-  walls.insert(walls.end(), problem.beam_segments.begin(), problem.beam_segments.end());
   const auto edges = mesh::edges_to_split(mesh, nodes.x, nodes.y, nodes.kind, problem.insertion_length * problem.h,
-                                          problem.interior_insertion_length * problem.h, {walls, 0.5 * problem.h});
+                                          problem.interior_insertion_length * problem.h, {lines, 0.5 * problem.h});
   for (const auto& [a, b, side] : edges) {
     const bool multi = mesh.multi_sided(b);
     const int i = nodes.add(0.5 * (nodes.x[a] + nodes.x[b]), 0.5 * (nodes.y[a] + nodes.y[b]), mesh::NodeKind::Fluid,
@@ -320,7 +322,7 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
       if (n < total_steps) {  // spacing for the next step (none after the last: the outputs are final)
         sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind,
                                                               problem.removal_distance * problem.h);
-        sum.inserted_particles += insert_particles(mesh, problem, nodes);
+        sum.inserted_particles += insert_particles(mesh, problem, constraints, nodes);
         if (checkpoints && checkpoints->every > 0 && n % checkpoints->every == 0) save_checkpoint();
       }
       if (options.progress) {

@@ -20,8 +20,8 @@
 namespace pfem::mesh {
 namespace {
 
-// The alpha of a triangle whose nodes were all inside the previous mesh, against alpha (Kratos's
-// PFEM widens it the same way for triangles without a free-surface node).
+// The factor on alpha for a triangle whose nodes were all inside the previous mesh (Kratos's PFEM
+// widens alpha the same way for triangles without a free-surface node).
 constexpr double kInteriorAlphaFactor = 1.25;
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -425,7 +425,7 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
           [&](Delaunay::Face_handle g) {
             for (int k = 0; k < 3; ++k) {
               const std::int32_t i = g->vertex(k)->info();
-              enclosed = enclosed && was_in[i] && !was_boundary(i);
+              enclosed = enclosed && was_inside(i);
               particle = particle || kind[i] == NodeKind::Fluid;
               beam = beam || kind[i] == NodeKind::Structure;
             }
