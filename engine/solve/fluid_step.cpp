@@ -120,11 +120,7 @@ void UnifiedStep::newton_correction(const StepSettings& s, bool first, bool stal
   // changes its tangent fifty-fold, and a stale one held the yielding obstacle's steps at a
   // contraction of 0.4 per iteration (20 iterations instead of 8).
   if (first || stalled || !system.refresh_structure()) {
-    try {
-      system.factorize(elements_, residual_.mp, first);
-    } catch (const std::runtime_error& e) {
-      throw StepFailure(e.what());
-    }
+    factorize_or_fail([&] { system.factorize(elements_, residual_.mp, first); });
     ++report_.factorizations;
   }
   report_.factorize_seconds += seconds_since(t0);

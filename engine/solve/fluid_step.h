@@ -120,6 +120,16 @@ class StepFailure : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+// Runs factorize(); its runtime_error (a zero or tiny pivot) becomes a StepFailure, so that the
+// step is retried shorter.
+template <class Factorize>
+void factorize_or_fail(Factorize&& factorize) {
+  try {
+    factorize();
+  } catch (const std::runtime_error& e) {
+    throw StepFailure(e.what());
+  }
+}
 // Thrown when the cancellation flag is seen.
 class StepCancelled : public std::runtime_error {
  public:

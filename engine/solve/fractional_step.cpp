@@ -176,11 +176,7 @@ void FractionalStep::iterate(const mesh::FluidMesh& mesh, const StepSettings& s,
     // structure whose tangent changed as fibers yield, a geometry that moved far).
     if (it == 0 || monitor.stalled()) {
       t0 = Clock::now();
-      try {
-        operators_.build(mesh, num_, mats_, lumped_, structure_, s.dt, it == 0);
-      } catch (const std::runtime_error& e) {
-        throw StepFailure(e.what());
-      }
+      factorize_or_fail([&] { operators_.build(mesh, num_, mats_, lumped_, structure_, s.dt, it == 0); });
       ++report_.factorizations;
       report_.factorize_seconds += seconds_since(t0);
     }
