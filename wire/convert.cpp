@@ -53,6 +53,7 @@ pfem::v1::Summary to_proto(const RunSummary& s) {
   out.set_newton_iterations(s.newton_iterations);
   out.set_factorizations(s.factorizations);
   out.set_substeps(s.substeps);
+  out.set_deformation_substeps(s.deformation_substeps);
   out.set_removed_particles(s.removed_particles);
   out.set_inserted_particles(s.inserted_particles);
   out.set_left_domain(s.left_domain);
@@ -92,6 +93,7 @@ RunSummary from_proto(const pfem::v1::Summary& s) {
   out.newton_iterations = s.newton_iterations();
   out.factorizations = s.factorizations();
   out.substeps = s.substeps();
+  out.deformation_substeps = s.deformation_substeps();
   out.removed_particles = s.removed_particles();
   out.inserted_particles = s.inserted_particles();
   out.left_domain = s.left_domain();

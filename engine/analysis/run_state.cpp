@@ -27,6 +27,7 @@ void archive(StateArchive& a, Histories& h) { a(h.columns), a(h.time), a(h.rows)
 void archive(StateArchive& a, RunSummary& s) {
   a(s.steps), a(s.wall_seconds), a(s.sensitivity_seconds), a(s.remesh_seconds), a(s.assemble_seconds);
   a(s.factorize_seconds), a(s.solve_seconds), a(s.newton_iterations), a(s.factorizations), a(s.substeps);
+  a(s.deformation_substeps);
   a(s.removed_particles), a(s.inserted_particles), a(s.left_domain), a(s.fluid_area_max_drift), a(s.particles);
   a(s.max_elements), a(s.fluid_area_initial), a(s.fluid_area_final), a(s.fluid_area_left);
 }

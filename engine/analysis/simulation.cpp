@@ -14,6 +14,7 @@
 #include "engine/analysis/moving_walls.h"
 #include "engine/analysis/recorders.h"
 #include "engine/analysis/run_state.h"
+#include "engine/mesh/deformation_cfl.h"
 #include "engine/mesh/particle_spacing.h"
 #include "engine/io/model_size.h"
 #include "engine/io/vtk_writer.h"
@@ -31,8 +32,12 @@ int node_outside(const NodeState& nodes, const Box& domain) {
     if (!nodes.is_fixed(i) && !domain.contains(nodes.x[i], nodes.y[i])) return static_cast<int>(i);
   return -1;
 }
-// Largest number of halvings of a step whose Newton solve fails (1/16 of dt at most).
+// Largest number of halvings of a step of each kind: before an attempt, where a triangle would
+// collapse, and after a failed attempt (1/256 of dt at most, both together).
 constexpr int kMaxHalvings = 4;
+struct Halvings {
+  int predicted = 0, failed = 0;
+};
 
 void add_work(RunSummary& sum, const StepReport& r) {
   sum.newton_iterations += r.iterations;
@@ -120,31 +125,41 @@ mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& prev
   return remesh_nodes(problem, nodes, options);
 }
 
-// Advances nodes by dt on mesh; when Newton fails (typically a sliver that inverts within the
-// step), retries as two half steps, removing too close particles (as between steps; see
-// particle_spacing.h) and remeshing in between. t: the time at its start (moving walls take
-// their velocities over the step from it). Returns the Newton iterations of the last attempt;
-// the work of every attempt, failed ones included, goes into sum.
+// Advances nodes by dt on mesh, or in two halves of dt / 2 (kMaxHalvings deep for each reason): at once
+// where a triangle would collapse within the step at the nodes' velocities (mesh/deformation_cfl.h;
+// the first half, on the same mesh, is halved again until none does), or after an attempt whose
+// Newton solve fails (typically a sliver that inverts within the step). Between the halves, too
+// close particles are removed (as between steps; see particle_spacing.h) and the nodes remeshed,
+// and the second half decides for itself. t: the time at its start (moving walls take their
+// velocities over the step from it). Returns the Newton iterations of the last attempt; the work
+// of every attempt, failed ones included, goes into sum. Halving is a decision taken from the
+// response, which the DDM follows as it is (not differentiated).
 int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& mesh, StepSettings settings,
                      const mesh::RemeshOptions& remesh_options, NodeState& nodes, double t, double removal_distance,
-                     const std::atomic<bool>* cancel, RunSummary& sum, int depth = 0) {
-  try {
-    const WallKinematics walls = wall_kinematics(problem, nodes, t, t + settings.dt);
-    settings.wall_velocity = walls.velocity;
-    settings.wall_velocity_sensitivity = walls.sensitivity;
-    settings.give_up_inverted = depth < kMaxHalvings;
-    step.solve(mesh, settings, nodes, cancel);
-    step.solve_sensitivities(mesh, settings, nodes);
-    step.commit(mesh, settings, nodes);
-    place_moving_walls(problem, t + settings.dt, walls, nodes);
-    add_work(sum, step.last_report());
-    return step.last_report().iterations;
-  } catch (const StepFailure&) {
-    add_work(sum, step.last_report());
-    if (depth == kMaxHalvings) throw;
+                     const std::atomic<bool>* cancel, RunSummary& sum, Halvings depth = {}) {
+  if (depth.predicted < kMaxHalvings && mesh::collapses_within(mesh, nodes.x, nodes.y, nodes.vx, nodes.vy, settings.dt)) {
+    ++sum.deformation_substeps;
+    ++depth.predicted;
+  } else {
+    try {
+      const WallKinematics walls = wall_kinematics(problem, nodes, t, t + settings.dt);
+      settings.wall_velocity = walls.velocity;
+      settings.wall_velocity_sensitivity = walls.sensitivity;
+      settings.give_up_inverted = depth.failed < kMaxHalvings;
+      step.solve(mesh, settings, nodes, cancel);
+      step.solve_sensitivities(mesh, settings, nodes);
+      step.commit(mesh, settings, nodes);
+      place_moving_walls(problem, t + settings.dt, walls, nodes);
+      add_work(sum, step.last_report());
+      return step.last_report().iterations;
+    } catch (const StepFailure&) {
+      add_work(sum, step.last_report());
+      if (depth.failed == kMaxHalvings) throw;
+    }
+    ++sum.substeps;
+    ++depth.failed;
   }
   settings.dt *= 0.5;
-  ++sum.substeps;
   int iterations = 0;
   for (int half = 0; half < 2; ++half) {
     if (half == 1) {
@@ -155,7 +170,7 @@ int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& 
       sum.remesh_seconds += since(t0);
     }
     iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, nodes, t + half * settings.dt,
-                                  removal_distance, cancel, sum, depth + 1);
+                                  removal_distance, cancel, sum, depth);
   }
   return iterations;
 }

@@ -62,6 +62,7 @@ std::string summary_json(const RunSummary& s) {
     << "  \"newton_iterations\": " << s.newton_iterations << ",\n"
     << "  \"factorizations\": " << s.factorizations << ",\n"
     << "  \"substeps\": " << s.substeps << ",\n"
+    << "  \"deformation_substeps\": " << s.deformation_substeps << ",\n"
     << "  \"removed_particles\": " << s.removed_particles << ",\n"
     << "  \"inserted_particles\": " << s.inserted_particles << ",\n"
     << "  \"left_domain\": " << s.left_domain << ",\n"

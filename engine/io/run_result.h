@@ -34,6 +34,9 @@ struct RunSummary {
   long newton_iterations = 0;  // of every attempt, failed ones before a halving included
   long factorizations = 0;
   int substeps = 0;         // steps split in halves after a failed Newton solve
+  // Steps (or substeps) split in halves before an attempt, a triangle collapsing within them at
+  // their start's velocities (engine/mesh/deformation_cfl.h).
+  int deformation_substeps = 0;
   int removed_particles = 0;   // taken out for coming too close to another node, or for crossing a wall
   int inserted_particles = 0;  // added in the middle of stretched edges
   int left_domain = 0;         // removed for leaving the domain (domain.on_exit "remove")

@@ -28,6 +28,7 @@ RunSummary every_field_set() {
   s.newton_iterations = 41;
   s.factorizations = 13;
   s.substeps = 2;
+  s.deformation_substeps = 7;
   s.removed_particles = 5;
   s.inserted_particles = 9;
   s.left_domain = 3;
