@@ -49,8 +49,10 @@ TEST(ReliabilityExamples, ObstacleFormWithDdmConverges) {
   // with the structure's tangent at every iterate; the obstacle's own weight then raised its
   // deflection by ~5 mm, and the threshold to 75 mm gives 2.772; the volume correction takes out
   // the +1.2 % of water the column's front had gained by 0.2 s, the peak at the mean values goes
-  // 71.8 -> 71.4 mm and beta to 3.233): a band, not a reference value.
-  EXPECT_NEAR(f.r.form.beta, 3.23, 0.2);
+  // 71.8 -> 71.4 mm and beta to 3.233; with particles put back beside walls and the wider alpha
+  // inside the water (29e6c0b, 12d7d87) the peak at the mean values is 71.16 mm, beta 3.505 (the
+  // old design point E = 926996, Fy = 36329 now peaks at 74.82 mm): a band, not a reference value.
+  EXPECT_NEAR(f.r.form.beta, 3.50, 0.2);
   // The yield stress drives the peak deflection: a weaker obstacle at the design point.
   EXPECT_LT(f.r.form.x(1), 5e4);
   EXPECT_GT(std::abs(f.r.form.alpha(1)), std::abs(f.r.form.alpha(0)));
