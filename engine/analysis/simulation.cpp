@@ -14,6 +14,7 @@
 #include "engine/analysis/moving_walls.h"
 #include "engine/analysis/recorders.h"
 #include "engine/analysis/run_state.h"
+#include "engine/analysis/slip_wall_remap.h"
 #include "engine/mesh/deformation_cfl.h"
 #include "engine/mesh/particle_spacing.h"
 #include "engine/io/model_size.h"
@@ -50,7 +51,8 @@ void add_work(RunSummary& sum, const StepReport& r) {
 }
 
 // The wall nodes at the contact lines of previous slide to them, every other sliding node goes
-// home (mesh/contact_line.h), both as the walls are at time t; a slid node's position follows
+// home (mesh/contact_line.h), both as the walls are at time t, a slip node with the wall's velocity
+// at its home (slip_wall_remap.h); a slid node's position follows
 // its particle's along the wall, and so does its position sensitivity: with home h, tangent u and
 // offset o = (p - h).u, the node h + o u has the derivative dh + ((dp - dh).u + (p - h).du) u + o du.
 // A slid slip node takes its particle's velocity along the wall (its free component): with one of
@@ -60,6 +62,7 @@ void slide_walls(const Problem& problem, const mesh::FluidMesh& previous, NodeSt
   const int P = nodes.num_params;
   std::vector<std::array<double, 4>> dwall;  // per sliding node and parameter: d(home_x, home_y, tx, ty)
   const auto sliding = sliding_walls_at(problem, P, t, dwall);
+  remap_slip_velocities(sliding, dwall, problem.wall_slip, previous.in_mesh, nodes);
   for (std::size_t j = 0; j < sliding.size(); ++j) {
     const auto& s = sliding[j];
     nodes.x[s.node] = s.home_x, nodes.y[s.node] = s.home_y;

@@ -134,6 +134,7 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
     pb.wall_slip[candidates[c].node] = candidate_slip[c];
     const int k = static_cast<int>(pb.sliding_walls.size());
     pb.sliding_walls.push_back(candidates[c]);
+    pb.sliding_walls.back().neighbours = candidate_neighbours[c];
     pb.sliding_motion.push_back(candidate_motion[c]);
     pb.wall_neighbours[candidates[c].node].push_back(k);
     for (const std::int32_t n : candidate_neighbours[c])

@@ -25,6 +25,8 @@ struct SlidingWallNode {
   double home_x = 0.0, home_y = 0.0;  // its place on the wall line
   double tx = 0.0, ty = 0.0;          // unit tangent of the wall piece
   double reach = 0.0;                 // largest slide either way [m]
+  // The wall nodes next to it on its piece, behind and ahead of it along the tangent.
+  std::array<std::int32_t, 2> neighbours{-1, -1};
 };
 
 // Where a sliding node goes: sliding[index] at its home + offset * tangent, following the
