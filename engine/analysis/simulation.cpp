@@ -51,9 +51,9 @@ void add_work(RunSummary& sum, const StepReport& r) {
 }
 
 // The wall nodes at the contact lines of previous slide to them, every other sliding node goes
-// home (mesh/contact_line.h), both as the walls are at time t, a slip node with the wall's velocity
-// at its home (slip_wall_remap.h); a slid node's position follows
-// its particle's along the wall, and so does its position sensitivity: with home h, tangent u and
+// home (mesh/contact_line.h), both as the walls are at time t, a slip node with the wall's
+// velocity at its home (slip_wall_remap.h); a slid node's position follows its particle's
+// along the wall, and so does its position sensitivity: with home h, tangent u and
 // offset o = (p - h).u, the node h + o u has the derivative dh + ((dp - dh).u + (p - h).du) u + o du.
 // A slid slip node takes its particle's velocity along the wall (its free component): with one of
 // its own, kept from step to step while its place is reset, it ran at 0.035 m/s up a slip paddle
@@ -128,10 +128,10 @@ mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& prev
   return remesh_nodes(problem, nodes, options);
 }
 
-// Advances nodes by dt on mesh, or in two halves of dt / 2 (kMaxHalvings deep for each reason): at once
-// where a triangle would collapse within the step at the nodes' velocities (mesh/deformation_cfl.h;
-// the first half, on the same mesh, is halved again until none does), or after an attempt whose
-// Newton solve fails (typically a sliver that inverts within the step). Between the halves, too
+// Advances nodes by dt on mesh, or in two halves of dt / 2 (kMaxHalvings deep for each reason):
+// at once where a triangle would collapse within the step at the nodes' velocities
+// (mesh/deformation_cfl.h; the first half, on the same mesh, is halved again until none does), or
+// after an attempt whose Newton solve fails (typically a sliver that inverts within the step). Between the halves, too
 // close particles are removed (as between steps; see particle_spacing.h) and the nodes remeshed,
 // and the second half decides for itself. t: the time at its start (moving walls take their
 // velocities over the step from it). Returns the Newton iterations of the last attempt; the work
@@ -140,7 +140,8 @@ mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& prev
 int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& mesh, StepSettings settings,
                      const mesh::RemeshOptions& remesh_options, NodeState& nodes, double t, double removal_distance,
                      const std::atomic<bool>* cancel, RunSummary& sum, Halvings depth = {}) {
-  if (depth.predicted < kMaxHalvings && mesh::collapses_within(mesh, nodes.x, nodes.y, nodes.vx, nodes.vy, settings.dt)) {
+  if (depth.predicted < kMaxHalvings &&
+      mesh::collapses_within(mesh, nodes.x, nodes.y, nodes.vx, nodes.vy, settings.dt)) {
     ++sum.deformation_substeps;
     ++depth.predicted;
   } else {
