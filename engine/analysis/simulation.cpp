@@ -81,9 +81,10 @@ void slide_walls(const Problem& problem, const mesh::FluidMesh& previous, NodeSt
     if (free == kSlipY) nodes.vy[s.node] = nodes.vy[slide.particle];
     for (int k = 0; k < P; ++k) {
       const double* dp = nodes.sensitivity(slide.particle, k);
-      const auto& [dhx, dhy, dtx, dty] = dwall[static_cast<std::size_t>(slide.index) * P + k];
-      const double along = (dp[NodeState::kDx] - dhx) * tx + (dp[NodeState::kDy] - dhy) * ty +
-                           (nodes.x[slide.particle] - s.home_x) * dtx + (nodes.y[slide.particle] - s.home_y) * dty;
+      const auto& dh = dwall[static_cast<std::size_t>(slide.index) * P + k];
+      const auto& [dhx, dhy, dtx, dty] = dh;
+      const double along = s.offset_derivative(nodes.x[slide.particle], nodes.y[slide.particle], dp[NodeState::kDx],
+                                               dp[NodeState::kDy], dh);
       double* dw = nodes.sensitivity(s.node, k);
       dw[NodeState::kDx] = dhx + along * tx + o * dtx, dw[NodeState::kDy] = dhy + along * ty + o * dty;
       if (free == kSlipX) dw[NodeState::kDvx] = dp[NodeState::kDvx];
@@ -131,9 +132,9 @@ mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& prev
 // Advances nodes by dt on mesh, or in two halves of dt / 2 (kMaxHalvings deep for each reason):
 // at once where a triangle would collapse within the step at the nodes' velocities
 // (mesh/deformation_cfl.h; the first half, on the same mesh, is halved again until none does), or
-// after an attempt whose Newton solve fails (typically a sliver that inverts within the step). Between the halves, too
-// close particles are removed (as between steps; see particle_spacing.h) and the nodes remeshed,
-// and the second half decides for itself. t: the time at its start (moving walls take their
+// after an attempt whose Newton solve fails (typically a sliver that inverts within the step).
+// Between the halves, too close particles are removed (as between steps; see particle_spacing.h)
+// and the nodes remeshed, and the second half decides for itself. t: the time at its start (moving walls take their
 // velocities over the step from it). Returns the Newton iterations of the last attempt; the work
 // of every attempt, failed ones included, goes into sum. Halving is a decision taken from the
 // response, which the DDM follows as it is (not differentiated).

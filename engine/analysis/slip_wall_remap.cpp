@@ -20,24 +20,20 @@ void remap_slip_velocities(std::span<const mesh::SlidingWallNode> sliding, std::
     const std::int32_t n = s.node;
     if (static_cast<std::size_t>(n) >= slip.size() || slip[n] == 0 || !is_wet(n)) continue;
     // Offsets along the wall from n's place: n's own (o) and its neighbour's on the side of home (om).
-    const auto offset = [&](std::int32_t i) { return (nodes.x[i] - s.home_x) * s.tx + (nodes.y[i] - s.home_y) * s.ty; };
-    const double o = offset(n);
+    const double o = s.offset(nodes.x[n], nodes.y[n]);
     if (o == 0.0) continue;
     const std::int32_t m = s.neighbours[o > 0.0 ? 0 : 1];
     if (!is_wet(m)) continue;
-    const double om = offset(m), w = -o / (om - o);  // home = n + w (m - n)
+    const double om = s.offset(nodes.x[m], nodes.y[m]), w = -o / (om - o);  // home = n + w (m - n)
     if (!(w >= 0.0 && w <= 1.0)) continue;
     const bool along_x = slip[n] == kSlipX;
     const std::vector<double>& v = along_x ? nodes.vx : nodes.vy;
     const int field = along_x ? NodeState::kDvx : NodeState::kDvy;
     Remap r{n, field, v[n] + w * (v[m] - v[n]), std::vector<double>(P)};
     for (int k = 0; k < P; ++k) {
-      const std::array<double, 4>& dh = dwall[j * P + k];  // d(home_x, home_y, tx, ty)
-      const double dhx = dh[0], dhy = dh[1], dtx = dh[2], dty = dh[3];
       const auto d_offset = [&](std::int32_t i) {
         const double* d = nodes.sensitivity(i, k);
-        return (d[NodeState::kDx] - dhx) * s.tx + (d[NodeState::kDy] - dhy) * s.ty + (nodes.x[i] - s.home_x) * dtx +
-               (nodes.y[i] - s.home_y) * dty;
+        return s.offset_derivative(nodes.x[i], nodes.y[i], d[NodeState::kDx], d[NodeState::kDy], dwall[j * P + k]);
       };
       const double dn = d_offset(n), dm = d_offset(m);
       const double dw = (-dn * (om - o) + o * (dm - dn)) / ((om - o) * (om - o));

@@ -15,7 +15,7 @@ std::vector<WallSlide> contact_line_slides(const FluidMesh& previous, std::span<
     double best_offset = 0.0;
     for (const int k : neighbours[wall]) {
       const SlidingWallNode& s = sliding[k];
-      const double offset = (x[particle] - s.home_x) * s.tx + (y[particle] - s.home_y) * s.ty;
+      const double offset = s.offset(x[particle], y[particle]);
       if (taken[k] || std::abs(offset) > s.reach) continue;
       if (best < 0 || std::abs(offset) < std::abs(best_offset)) best = k, best_offset = offset;
     }

@@ -27,6 +27,14 @@ struct SlidingWallNode {
   double reach = 0.0;                 // largest slide either way [m]
   // The wall nodes next to it on its piece, behind and ahead of it along the tangent.
   std::array<std::int32_t, 2> neighbours{-1, -1};
+
+  // How far along the wall from home the point (x, y) lies, (p - h).u.
+  double offset(double x, double y) const { return (x - home_x) * tx + (y - home_y) * ty; }
+  // Its derivative, with (dx, dy) the point's and dh = d(home_x, home_y, tx, ty) the wall's:
+  // (dp - dh).u + (p - h).du.
+  double offset_derivative(double x, double y, double dx, double dy, const std::array<double, 4>& dh) const {
+    return (dx - dh[0]) * tx + (dy - dh[1]) * ty + (x - home_x) * dh[2] + (y - home_y) * dh[3];
+  }
 };
 
 // Where a sliding node goes: sliding[index] at its home + offset * tangent, following the
