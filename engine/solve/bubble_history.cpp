@@ -12,44 +12,46 @@ std::uint64_t triangle_key(const std::array<std::int32_t, 3>& t) {
   std::sort(n.begin(), n.end());
   return n[0] | (n[1] << 21) | (n[2] << 42);
 }
-
-template <class Value>
-void archive_by_triangle(StateArchive& a, std::unordered_map<std::uint64_t, Value>& map) {
-  std::vector<std::uint64_t> keys;
-  for (const auto& [key, value] : map) keys.push_back(key);
-  std::sort(keys.begin(), keys.end());
-  a(keys);
-  if (a.is_restoring()) map.clear();
-  for (const auto key : keys) a(map[key]);
-}
 }  // namespace
 
-void BubbleHistory::restore(Triangles triangles, int num_params, std::vector<Eigen::Vector2d>& velocity,
-                            std::vector<Sensitivity>& sensitivity) const {
-  const std::size_t ne = triangles.size();
-  velocity.assign(ne, Eigen::Vector2d::Zero());
-  sensitivity.assign(num_params > 0 ? ne : 0, Sensitivity::Zero(2, num_params));
-  for (std::size_t e = 0; e < ne; ++e) {
-    const std::uint64_t key = triangle_key(triangles[e]);
-    if (auto it = velocity_.find(key); it != velocity_.end()) velocity[e] = it->second;
-    if (auto it = sensitivity_.find(key); num_params > 0 && it != sensitivity_.end()) sensitivity[e] = it->second;
+void BubbleHistory::restore(Triangles triangles, int num_params, Eigen::VectorXd& velocity,
+                            Eigen::MatrixXd& sensitivity) const {
+  const Eigen::Index ne = static_cast<Eigen::Index>(triangles.size());
+  velocity.setZero(2 * ne);
+  sensitivity.setZero(num_params > 0 ? 2 * ne : 0, num_params);
+  const bool with_sensitivity = num_params > 0 && sensitivity_.cols() == num_params;
+  for (Eigen::Index e = 0; e < ne; ++e) {
+    const auto it = index_.find(triangle_key(triangles[e]));
+    if (it == index_.end()) continue;
+    velocity.segment<2>(2 * e) = velocity_.segment<2>(2 * it->second);
+    if (with_sensitivity) sensitivity.middleRows<2>(2 * e) = sensitivity_.middleRows<2>(2 * it->second);
   }
 }
 
 void BubbleHistory::store(Triangles triangles, const Eigen::Ref<const Eigen::VectorXd>& velocity,
                           const Eigen::Ref<const Eigen::MatrixXd>& sensitivity) {
-  velocity_.clear();
-  sensitivity_.clear();
-  for (std::size_t e = 0; e < triangles.size(); ++e) {
-    const std::uint64_t key = triangle_key(triangles[e]);
-    velocity_[key] = velocity.segment<2>(2 * e);
-    if (sensitivity.cols() > 0) sensitivity_[key] = sensitivity.middleRows<2>(2 * e);
-  }
+  keys_.resize(triangles.size());
+  for (std::size_t e = 0; e < triangles.size(); ++e) keys_[e] = triangle_key(triangles[e]);
+  velocity_ = velocity;
+  sensitivity_ = sensitivity;
+  index_keys();
+}
+
+void BubbleHistory::index_keys() {
+  index_.clear();
+  index_.reserve(keys_.size());
+  for (std::size_t e = 0; e < keys_.size(); ++e) index_.emplace(keys_[e], static_cast<int>(e));
 }
 
 void BubbleHistory::archive(StateArchive& a) {
-  archive_by_triangle(a, velocity_);
-  archive_by_triangle(a, sensitivity_);
+  a(keys_);
+  a(velocity_);
+  a(sensitivity_);
+  if (!a.is_restoring()) return;
+  if (velocity_.size() != 2 * static_cast<Eigen::Index>(keys_.size()) ||
+      (sensitivity_.cols() > 0 && sensitivity_.rows() != velocity_.size()))
+    throw CheckpointError("checkpoint: bubble velocities that do not match their triangles");
+  index_keys();
 }
 
 }  // namespace pfem

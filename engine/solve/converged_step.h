@@ -3,10 +3,8 @@
 // numbering, the iterate, the elements' terms there and the Newton system's analysis and
 // factorisation. References into the step, valid until it commits.
 #include <Eigen/Core>
-#include <span>
 
 #include "engine/mesh/remesher.h"
-#include "engine/solve/bubble_history.h"
 #include "engine/solve/condensed_bubble_system.h"
 #include "engine/solve/step_elements.h"
 #include "engine/solve/step_numbering.h"
@@ -30,7 +28,7 @@ struct ConvergedStep {
   // rest can converge at its first iterate).
   const CondensedBubbleSystem& condensed;
   bool newton_factorized;
-  std::span<const BubbleHistory::Sensitivity> bubbles_n;  // the bubbles' sensitivities at t_n
+  const Eigen::MatrixXd& bubbles_n;  // the bubbles' sensitivities at t_n (2 rows a triangle)
 };
 
 }  // namespace pfem

@@ -63,11 +63,11 @@ void UnifiedStep::solve(const mesh::FluidMesh& mesh, const StepSettings& s, cons
 
 void UnifiedStep::initial_iterate(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
   // The velocities, pressures and bubbles of t_n.
-  std::vector<Eigen::Vector2d> vbn;
+  Eigen::VectorXd vbn;
   bubble_history_.restore(mesh.triangles, static_cast<int>(s.sensitivity.size()), vbn, dvbn_);
-  elements_.begin(mesh, s, num_, nodes, std::move(vbn));
   v_.setZero(num_.velocities);
-  for (std::size_t e = 0; e < mesh.triangles.size(); ++e) v_.segment<2>(num_.bubble(e)) = elements_.bubbles_n()[e];
+  v_.tail(vbn.size()) = vbn;  // the bubbles are the last velocity unknowns, by triangle
+  elements_.begin(mesh, s, num_, nodes, std::move(vbn));
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (num_.vx[i] >= 0) v_[num_.vx[i]] = nodes.vx[i];
     if (num_.vy[i] >= 0) v_[num_.vy[i]] = nodes.vy[i];

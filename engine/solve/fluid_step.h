@@ -182,7 +182,7 @@ class UnifiedStep : public StepSolver {
   std::vector<std::uint8_t> hits_wall_;  // per node: hits a wall (check_admissible)
   std::vector<WallPiece> walls_;         // the walls and beams at t_n and t_{n+1} (ditto)
   BubbleHistory bubble_history_;         // of the last converged step
-  std::vector<BubbleHistory::Sensitivity> dvbn_;  // DDM: bubble sensitivities (2 x P) at t_n per element
+  Eigen::MatrixXd dvbn_;                 // DDM: the bubbles' sensitivities at t_n (2 rows a triangle)
   // Per iteration.
   Eigen::VectorXd v_, p_;  // current iterate of the unknowns
   StepResidual residual_;

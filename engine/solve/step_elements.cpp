@@ -10,7 +10,7 @@
 namespace pfem {
 
 void StepElements::begin(const mesh::FluidMesh& mesh, const StepSettings& s, const StepNumbering& num,
-                         const NodeState& nodes, std::vector<Eigen::Vector2d> bubbles_n) {
+                         const NodeState& nodes, Eigen::VectorXd bubbles_n) {
   mesh_ = &mesh, s_ = &s, num_ = &num;
   xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy;
   vbn_ = std::move(bubbles_n);
@@ -71,7 +71,7 @@ fluid::ElementState StepElements::state(int e, const Eigen::VectorXd& v, const E
   }
   const int b = num.bubble(e);
   st.v(6) = v[b], st.v(7) = v[b + 1];
-  st.vn.tail<2>() = vbn_[e];
+  st.vn.tail<2>() = vbn_.segment<2>(2 * e);
   return st;
 }
 

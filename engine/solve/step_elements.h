@@ -30,7 +30,7 @@ class StepElements {
   // bubble velocities per triangle, and the volume correction's dilatation. mesh, s and num must
   // outlive the step.
   void begin(const mesh::FluidMesh& mesh, const StepSettings& s, const StepNumbering& num, const NodeState& nodes,
-             std::vector<Eigen::Vector2d> bubbles_n);
+             Eigen::VectorXd bubbles_n);
   // Every element's geometry and residual at the iterate (v, p).
   void update(const Eigen::VectorXd& v, const Eigen::VectorXd& p);
   // Every element's matrices at the geometry of the last update (computed once per iterate).
@@ -50,7 +50,6 @@ class StepElements {
   const std::vector<double>& x_n() const { return xn_; }
   const std::vector<double>& y_n() const { return yn_; }
   const Eigen::VectorXd& pressures_n() const { return pn_; }
-  const std::vector<Eigen::Vector2d>& bubbles_n() const { return vbn_; }
   // The step's volume correction (its dilatation 0: none).
   const VolumeCorrection& volume() const { return volume_; }
 
@@ -63,7 +62,7 @@ class StepElements {
   const StepNumbering* num_ = nullptr;
   std::vector<double> xn_, yn_, vxn_, vyn_;  // state at t_n (per node)
   Eigen::VectorXd pn_;                       // ... and the pressures there (per unknown)
-  std::vector<Eigen::Vector2d> vbn_;         // bubble velocities at t_n (per element)
+  Eigen::VectorXd vbn_;                      // bubble velocities at t_n (2 rows a triangle)
   VolumeCorrection volume_;
   // At the current iterate.
   std::vector<fluid::TriangleGeometry> geometries_;

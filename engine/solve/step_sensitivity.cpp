@@ -74,7 +74,7 @@ void StepSensitivity::right_hand_sides(const ConvergedStep& c, const NodeState& 
         dvn(2 * a) = d[NodeState::kDvx], dvn(2 * a + 1) = d[NodeState::kDvy];
         dpn(a) = nodes.pressure_sensitivity(tri[a], mesh.multi_sided(tri[a]), mesh.side(e, a), k);
       }
-      dvn.tail<2>() = c.bubbles_n[e].col(k);
+      dvn.tail<2>() = c.bubbles_n.block<2, 1>(2 * e, k);
       fluid::Vec8 sv = gd.drv_dx * dxn + m.M * dvn * inv_dt;
       fluid::Vec3 sp = gd.drp_dx * dxn + m.Mp.cwiseProduct(dpn) * inv_dt;
       if (s.sensitivity[k].any()) {
