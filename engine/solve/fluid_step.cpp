@@ -26,7 +26,7 @@ double seconds_since(Clock::time_point t0) {
 
 // Why Newton gave the step up.
 StepFailure not_converged(const NewtonMonitor& newton) {
-  char msg[128];
+  char msg[192];
   std::snprintf(msg, sizeof msg, "Newton did not converge in %d iterations (relative residual %.3e%s)",
                 newton.iteration(), newton.residual(),
                 newton.inverted_and_stagnating() ? ", a triangle inverted and the residual stagnating"
