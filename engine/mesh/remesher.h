@@ -2,7 +2,8 @@
 // PFEM remeshing (theory §6, step 1): (constrained) Delaunay triangulation of all nodes at
 // their current positions (CGAL, exact predicates), with wall and beam segments as
 // constraints, the alpha-shape test per face, removal of triangles without a fluid particle,
-// and free-surface detection. CGAL stays inside remesher.cpp.
+// and free-surface detection. CGAL stays inside engine/mesh/'s .cpp files (its types in the
+// internal delaunay_types.h, remesh()'s passes in remesh_passes.h).
 #include <array>
 #include <cstdint>
 #include <span>
@@ -22,7 +23,7 @@ struct RemeshOptions {
   double h = 0.0;      // particle spacing [m], > 0
   double alpha = 1.2;  // keep a triangle when its circumradius <= alpha * h
   // Gravity (any length; zero disables): triangles of two wall/structure nodes hanging above a
-  // boundary particle are dropped (see remesher.cpp).
+  // boundary particle are dropped (see hanging_faces.cpp).
   double gravity_x = 0.0, gravity_y = 0.0;
   // Constraint segments, each a pair of node indices: consecutive nodes of the wall
   // polylines, and beam elements. Each segment is forced into the triangulation (a
