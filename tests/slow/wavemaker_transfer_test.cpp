@@ -6,7 +6,7 @@
 //    harmonic of the wave gauge 3 d from the paddle, over four periods after the ramp-up and
 //    before the far wall's reflection returns, against Biesel's transfer function (within 5 %),
 //    and the wave's period against the paddle's (within 1 %);
-//  - Goring's piston trajectory for a solitary wave of H = 0.2 d (and 0.1 d from a slip paddle):
+//  - Goring's piston trajectory for a solitary wave of H = 0.2 d (0.1 d and 0.3 d from a slip paddle):
 //    its crest at 3 d and 13 d from the paddle within 5 % of H, and its speed between them within
 //    3 % of sqrt(g (d + H)).
 // dt = T / 1000: backward Euler damps a wave by about 2 pi^2 x / (N T c_g) over a run x at N
@@ -155,6 +155,7 @@ TEST(WavemakerTransfer, GoringsSolitaryWaveKeepsItsHeightAndSpeed) { expect_soli
 // roughens the surface by about h / 7, its crest came out flattened (0.88 H at 3 d; 0.98 H at
 // h = d / 20); from a slip paddle, as Goring's inviscid theory has it, the wave is right at d / 10.
 TEST(WavemakerTransfer, GoringsLowSolitaryWaveFromASlipPaddle) { expect_solitary(0.1 * kD, true); }
+TEST(WavemakerTransfer, GoringsHighSolitaryWaveFromASlipPaddle) { expect_solitary(0.3 * kD, true); }
 
 }  // namespace
 }  // namespace pfem
