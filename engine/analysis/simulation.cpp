@@ -134,10 +134,10 @@ mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& prev
 // (mesh/deformation_cfl.h; the first half, on the same mesh, is halved again until none does), or
 // after an attempt whose Newton solve fails (typically a sliver that inverts within the step).
 // Between the halves, too close particles are removed (as between steps; see particle_spacing.h)
-// and the nodes remeshed, and the second half decides for itself. t: the time at its start (moving walls take their
-// velocities over the step from it). Returns the Newton iterations of the last attempt; the work
-// of every attempt, failed ones included, goes into sum. Halving is a decision taken from the
-// response, which the DDM follows as it is (not differentiated).
+// and the nodes remeshed, and the second half decides for itself. t: the time at its start
+// (moving walls take their velocities over the step from it). Returns the Newton iterations of
+// the last attempt; the work of every attempt, failed ones included, goes into sum. Halving is a
+// decision taken from the response, which the DDM follows as it is (not differentiated).
 int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& mesh, StepSettings settings,
                      const mesh::RemeshOptions& remesh_options, NodeState& nodes, double t, double removal_distance,
                      const std::atomic<bool>* cancel, RunSummary& sum, Halvings depth = {}) {

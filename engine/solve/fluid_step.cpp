@@ -66,7 +66,7 @@ void UnifiedStep::initial_iterate(const mesh::FluidMesh& mesh, const StepSetting
   Eigen::VectorXd vbn;
   bubble_history_.restore(mesh.triangles, static_cast<int>(s.sensitivity.size()), vbn, dvbn_);
   v_.setZero(num_.velocities);
-  v_.tail(vbn.size()) = vbn;  // the bubbles are the last velocity unknowns, by triangle
+  v_.segment(num_.bubble(0), vbn.size()) = vbn;  // bubble(e) = bubble(0) + 2 e
   elements_.begin(mesh, s, num_, nodes, std::move(vbn));
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (num_.vx[i] >= 0) v_[num_.vx[i]] = nodes.vx[i];
