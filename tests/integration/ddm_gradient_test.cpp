@@ -108,8 +108,6 @@ TEST(DdmGradient, ThroughStepsHalvedBeforeTheirAttempt) {
   expect_exact(c, {"tip_ux", "base_p"}, 1e-2);
 }
 
-// Up to six parameters the step's sensitivity system is solved by GMRES preconditioned with the
-// Newton factorisation, above that by UMFPACK's LU: the same sensitivities either way.
 // A parameter at the bound of its range (a viscosity of 0: mu - eps is no model) is
 // differentiated one-sided by the FDM, against the unperturbed run; the DDM needs no care.
 TEST(DdmGradient, AViscosityOfZeroIsCheckedOneSided) {
@@ -126,6 +124,10 @@ TEST(DdmGradient, AViscosityOfZeroIsCheckedOneSided) {
   }
 }
 
+// Up to two parameters the step's sensitivity system is solved by GMRES preconditioned with the
+// Newton factorisation, above that by the Jacobian's LU, each to a relative residual of 1e-13:
+// the same sensitivities either way, within 1e-8 of their largest (measured 9e-12 to 1.8e-9
+// over 40 steps; 4e-14 to 2.6e-11 when both solved to 1e-14).
 TEST(DdmGradient, IterativeAndDirectSensitivitySolvesAgree) {
   auto model = example("dam-break-obstacle");
   set_region(model, 0.19, 0.0, 0.292, 0.2);
@@ -156,8 +158,10 @@ TEST(DdmGradient, IterativeAndDirectSensitivitySolvesAgree) {
       scale = std::max(scale, std::abs(direct.sensitivities.rows[i][k]));
       diff = std::max(diff, std::abs(iterative.sensitivities.rows[i][j] - direct.sensitivities.rows[i][k]));
     }
+    std::printf("%-26s max |d/dE| %.4e  max |GMRES - LU| / that %.2e\n", name.c_str(), scale,
+                scale > 0.0 ? diff / scale : diff);
     EXPECT_GT(scale, 0.0) << name;
-    EXPECT_LT(diff, 1e-9 * scale) << name;
+    EXPECT_LT(diff, 1e-8 * scale) << name;
   }
 }
 
@@ -261,9 +265,9 @@ TEST(DdmGradient, ForceAndMomentOnAWallAndABeam) {
 
 // A directional parameter "dir" weighing the given parameters (model.proto, Parameter.direction):
 // from one sensitivity solve per step (one sensitivity column per recorder) its DDM is the
-// weighted sum of theirs from a P-parameter run to 1e-11 of the terms' size (the largest over
-// time of sum_k |w_k d/dtheta_k|: the terms may cancel; measured 1e-13 to 3e-12, the step's
-// sensitivity GMRES stops at a residual of 1e-13), with the same responses bit for bit;
+// weighted sum of theirs from a P-parameter run to 1e-10 of the terms' size (the largest over
+// time of sum_k |w_k d/dtheta_k|: the terms may cancel; measured 3e-13 to 2e-11, the step's
+// sensitivity solves stop at a residual of 1e-13), with the same responses bit for bit;
 // and it matches the engine's central differences along it (two runs at v_k +- w_k s) within
 // 1e-4 of their largest.
 void check_direction(pfem::v1::Model model, double t_end,
@@ -315,7 +319,7 @@ void check_direction(pfem::v1::Model model, double t_end,
                 r.name().c_str(), scale, scale > 0.0 ? diff / scale : diff);
     if (std::find(recorders.begin(), recorders.end(), r.name()) == recorders.end()) continue;
     EXPECT_GT(scale, 0.0) << r.name();
-    EXPECT_LE(diff, 1e-11 * scale) << r.name();
+    EXPECT_LE(diff, 1e-10 * scale) << r.name();
   }
 
   const GradientCheck c = check(model, t_end, {"dir"});
