@@ -24,8 +24,9 @@ constexpr double kSensitivityTolerance = 1e-13;
 constexpr int kGmresIterations = 15;
 // Above this many parameters one LU of the Jacobian and its back-substitutions cost less than
 // a GMRES solve per parameter preconditioned by the Newton factorisation (pfem-bench-ddm on the
-// yielding obstacle to 0.3 s: the LU's fixed part 0.5 of the response and 6 % a parameter
-// against 0.15 and 20 %).
+// yielding obstacle to 0.3 s: the LU's fixed part 0.51 of the response and 6.1 % a parameter
+// against 0.17 and 13.2 %; measured directly, GMRES cost 0.70 of the response against 0.77 at
+// three parameters and 0.85 against 0.77 at four).
 constexpr int kGmresParameters = 2;
 // After a column GMRES did not solve, the steps that take the LU at once (the wave flume's
 // moving paddle: GMRES failed on most steps, and trying it first cost 0.7 of a response).
