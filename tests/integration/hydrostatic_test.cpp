@@ -75,5 +75,33 @@ TEST(Hydrostatic, TheLastStepEndsAtTEnd) {
   EXPECT_NEAR(r.responses.rows.back()[bottom_p], model.fluid().rho() * 9.81 * 0.2, 2.0);
 }
 
+// Central differences of the bottom pressure with respect to rho: g h. With a Newton tolerance
+// not far below the FDM step (each run's Newton error is divided by the step) the run says so.
+TEST(Hydrostatic, FdmOfTheBottomPressureIsGHAndALooseNewtonToleranceIsWarnedOf) {
+  auto model = read_model_file(std::string(PFEM_SOURCE_DIR) + "/examples/hydrostatic.json");
+  RunOptions options;
+  options.t_end = 0.02;
+  options.sensitivity = SensitivityMethod::kFdm;
+  options.params = {"rho_f"};
+  const auto fdm_tolerance_warnings = [](const RunResult& r) {
+    return std::count_if(r.summary.warnings.begin(), r.summary.warnings.end(),
+                         [](const std::string& w) { return w.rfind("analysis.newton_tolerance: ", 0) == 0; });
+  };
+  const RunResult tight = run(model, options);
+  ASSERT_EQ(tight.summary.status, RunStatus::kCompleted) << tight.summary.message;
+  const int dp = column(tight.sensitivities, "dbottom_p/drho_f");
+  ASSERT_GE(dp, 0);
+  EXPECT_NEAR(tight.sensitivities.rows.back()[dp], 9.81 * 0.2, 0.02 * 9.81 * 0.2);
+  EXPECT_EQ(fdm_tolerance_warnings(tight), 0);
+
+  model.mutable_analysis()->set_newton_tolerance(1e-7);  // the FDM step is 1e-7
+  const RunResult loose = run(model, options);
+  ASSERT_EQ(loose.summary.status, RunStatus::kCompleted) << loose.summary.message;
+  ASSERT_EQ(fdm_tolerance_warnings(loose), 1);
+  for (const auto& w : loose.summary.warnings) std::printf("%s\n", w.c_str());
+  options.fdm_eps = 1e-5;  // a larger step leaves room for that tolerance
+  EXPECT_EQ(fdm_tolerance_warnings(run(model, options)), 0);
+}
+
 }  // namespace
 }  // namespace pfem
