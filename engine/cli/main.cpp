@@ -298,6 +298,7 @@ int check_gradients(const std::vector<std::string>& args) {
   return with_exit_codes([&] {
     const auto model = with_formulation(pfem::read_model_file(a.positional(0)), formulation);
     const pfem::GradientCheck check = pfem::check_gradients(model, options, true);
+    for (const auto& w : check.fdm.warnings) std::cerr << "pfem: warning: " << w << "\n";
     for (const auto* s : {&check.ddm, &check.fdm}) {
       if (s->status != pfem::RunStatus::kCompleted) {
         std::cerr << "pfem: " << (s == &check.ddm ? "DDM" : "FDM") << " run stopped: " << s->message << "\n";
