@@ -143,7 +143,10 @@ TEST(ServiceMemory, UnauthenticatedRequestsAreRefusedBeforeTheirBodyIsRead) {
               "peak %.0f MB\n",
               kClients, start_mb, peak_mb, read_mb);
   EXPECT_TRUE(accepted.ok()) << accepted.error_message();
-  EXPECT_LT(peak_mb - start_mb, 16.0);
+  // Less than one request's body for all eight: none was read. What they raise is what HTTP/2
+  // flow control lets each connection buffer before the refusal (measured 9 to 22 MB for the
+  // eight, depending on how far the windows had grown); reading them would take 480 MB.
+  EXPECT_LT(peak_mb - start_mb, 60.0);
   EXPECT_GT(read_mb - start_mb, 60.0);
 }
 
