@@ -6,8 +6,6 @@
 #include <limits>
 #include <optional>
 #include <set>
-#include <sstream>
-#include <string>
 
 #include "engine/analysis/blas_threads.h"
 #include "engine/analysis/simulation.h"
@@ -112,22 +110,6 @@ std::optional<Problem> problem_if_valid(const pfem::v1::Model& model, const Prob
   }
 }
 
-// Central differences at a relative step eps carry the Newton error of each run divided by eps.
-// On the yielding obstacle to 0.3 s (E, eps 1e-7) DDM against FDM was 1.2e-7 to 5.7e-5 at a
-// Newton tolerance of 1e-10, about the same at 1e-8 and 1e-7, and up to 9.8e-5 at 1e-6, where
-// the FDM's own error had grown tenfold; the DDM needs no such margin.
-constexpr double kFdmToleranceToStep = 0.1;
-
-std::optional<std::string> fdm_tolerance_warning(double newton_tolerance, double fdm_eps) {
-  if (newton_tolerance <= kFdmToleranceToStep * fdm_eps) return std::nullopt;
-  std::ostringstream o;
-  o.precision(3);
-  o << "analysis.newton_tolerance: " << newton_tolerance << " is not far below the FDM step " << fdm_eps
-    << ": central differences divide each run's Newton error by the step (keep it at most " << kFdmToleranceToStep
-    << " x the step, e.g. the default 1e-10)";
-  return o.str();
-}
-
 // Central differences: 2 runs per parameter, step fdm_step(); a one-sided difference against
 // the unperturbed run where one side leaves the parameter's range.
 void finite_differences(const pfem::v1::Model& model, const Problem& base, const RunOptions& o,
@@ -229,7 +211,7 @@ RunResult run(const pfem::v1::Model& model, const RunOptions& options) {
   }
   if (options.sensitivity == SensitivityMethod::kFdm) {
     if (auto w = fdm_tolerance_warning(problem.newton_tolerance, options.fdm_eps))
-      result.summary.warnings.push_back(*w);
+      result.summary.warnings.push_back(w->to_string());
     if (result.summary.status == RunStatus::kCompleted) finite_differences(model, problem, options, params, result);
   }
   result.summary.wall_seconds = result.summary.response_seconds + result.summary.sensitivity_seconds;

@@ -90,6 +90,14 @@ std::optional<FieldError> ignored_bulk_modulus(const Model& m) {
                     "modulus (leave fluid.kappa out)"};
 }
 
+std::optional<FieldError> fdm_tolerance_warning(double newton_tolerance, double fdm_eps) {
+  if (newton_tolerance <= kFdmToleranceToStep * fdm_eps) return std::nullopt;
+  return FieldError{"analysis.newton_tolerance",
+                    num(newton_tolerance) + " is not far below the FDM step " + num(fdm_eps) +
+                        ": central differences divide each run's Newton error by the step (keep it at most " +
+                        num(kFdmToleranceToStep) + " x the step, e.g. the default 1e-10)"};
+}
+
 std::vector<FieldError> model_warnings(const Model& m) {
   std::vector<FieldError> w;
   const double rho = m.fluid().rho(), kappa = m.fluid().kappa(), h = m.mesh().h();
