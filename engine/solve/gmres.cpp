@@ -15,13 +15,14 @@ GmresResult gmres(const LinearOperator& a, const LinearOperator& m_inv, const Ei
   while (result.iterations < max_iterations) {
     // Arnoldi on A M^-1 from the current residual, Givens rotations on the Hessenberg matrix.
     const double beta = r.norm();
-    std::vector<Eigen::VectorXd> v{r / beta};
+    std::vector<Eigen::VectorXd> v{r / beta}, z;  // z[j] = M^-1 v[j], kept for the update
     Eigen::MatrixXd h = Eigen::MatrixXd::Zero(restart + 1, restart);
     Eigen::VectorXd g = Eigen::VectorXd::Zero(restart + 1), cs(restart), sn(restart);
     g(0) = beta;
     int k = 0;
     for (; k < restart && result.iterations < max_iterations; ++k, ++result.iterations) {
-      Eigen::VectorXd w = a(m_inv(v[k]));
+      z.push_back(m_inv(v[k]));
+      Eigen::VectorXd w = a(z[k]);
       for (int j = 0; j <= k; ++j) {
         h(j, k) = w.dot(v[j]);
         w -= h(j, k) * v[j];
@@ -42,11 +43,9 @@ GmresResult gmres(const LinearOperator& a, const LinearOperator& m_inv, const Ei
         break;
       }
     }
-    // x += M^-1 V y with H y = g (upper triangular k x k).
+    // x += M^-1 V y = Z y with H y = g (upper triangular k x k): no further preconditioner solve.
     const Eigen::VectorXd y = h.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(g.head(k));
-    Eigen::VectorXd update = Eigen::VectorXd::Zero(b.size());
-    for (int j = 0; j < k; ++j) update += y(j) * v[j];
-    x += m_inv(update);
+    for (int j = 0; j < k; ++j) x += y(j) * z[j];
     r = b - a(x);  // the true residual, not the recursion's estimate
     result.relative_residual = r.norm() / b_norm;
     if (result.relative_residual <= tolerance) {
