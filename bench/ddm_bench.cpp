@@ -7,7 +7,9 @@
 // and scaled to 2P + 1 runs for the others (every FDM run costs one plain response run). Then
 // the split of the sensitivity cost of each solver path into a fixed part per step and a part
 // per parameter, both as fractions of the response.
+#include <array>
 #include <cstdio>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -19,13 +21,18 @@
 
 namespace {
 
-// An example with its parameters and the given ones added (name, target), eight in all.
-pfem::v1::Model example_with(const std::string& file, const std::vector<std::pair<std::string, std::string>>& extra) {
+// An example with its parameters and those of its obstacle's material, section and beam (the
+// first of each) given as (name, kind, field) added, eight in all.
+pfem::v1::Model example_with(const std::string& file, const std::vector<std::array<std::string, 3>>& extra) {
   auto model = pfem::read_model_file(std::string(PFEM_SOURCE_DIR) + "/examples/" + file);
-  for (const auto& [name, target] : extra) {
+  const auto& structure = model.structure();
+  const std::map<std::string, std::string> names{{"material", structure.materials(0).name()},
+                                                 {"section", structure.sections(0).name()},
+                                                 {"beam", structure.beams(0).name()}};
+  for (const auto& [name, kind, field] : extra) {
     auto* p = model.add_parameters();
     p->set_name(name);
-    p->add_targets(target);
+    p->add_targets(kind.empty() ? field : kind + "." + names.at(kind) + "." + field);
   }
   if (model.parameters_size() != 8) throw std::logic_error(file + ": the bench expects eight parameters");
   return model;
@@ -34,18 +41,18 @@ pfem::v1::Model example_with(const std::string& file, const std::vector<std::pai
 // The example's E, Fy, rho_f, mu, kappa, then the hardening ratio, the section depth and the
 // obstacle's density.
 pfem::v1::Model yielding_obstacle() {
-  return example_with("dam-break-obstacle.json", {{"b", "material.steel.hardening_ratio"},
-                                                  {"depth", "section.obstacle.depth"},
-                                                  {"rho_s", "beam.obstacle.rho"}});
+  return example_with("dam-break-obstacle.json", {{{"b", "material", "hardening_ratio"},
+                                                   {"depth", "section", "depth"},
+                                                   {"rho_s", "beam", "rho"}}});
 }
 
 // The example's E, rho_f, mu, kappa, then the section's width and depth, the obstacle's density
 // and the model's thickness.
 pfem::v1::Model elastic_obstacle() {
-  return example_with("dam-break-elastic-obstacle.json", {{"width", "section.obstacle.width"},
-                                                          {"depth", "section.obstacle.depth"},
-                                                          {"rho_s", "beam.obstacle.rho"},
-                                                          {"thickness", "thickness"}});
+  return example_with("dam-break-elastic-obstacle.json", {{{"width", "section", "width"},
+                                                           {"depth", "section", "depth"},
+                                                           {"rho_s", "beam", "rho"},
+                                                           {"thickness", "", "thickness"}}});
 }
 
 void bench(const char* title, const pfem::v1::Model& model, double t_end, bool fdm_all) {
@@ -118,9 +125,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "pfem-bench-ddm: %s\n%s", e.what(), usage);
     return 2;
   }
-  if (which != "elastic") bench("yielding obstacle (dam-break-obstacle.json)", yielding_obstacle(), t_end, fdm_all);
-  if (which == "both") std::printf("\n");
-  if (which != "obstacle")
-    bench("elastic obstacle (dam-break-elastic-obstacle.json, water)", elastic_obstacle(), t_end, fdm_all);
+  try {
+    if (which != "elastic") bench("yielding obstacle (dam-break-obstacle.json)", yielding_obstacle(), t_end, fdm_all);
+    if (which == "both") std::printf("\n");
+    if (which != "obstacle")
+      bench("elastic obstacle (dam-break-elastic-obstacle.json, water)", elastic_obstacle(), t_end, fdm_all);
+  } catch (const std::exception& e) {  // a model error or an example that no longer fits the bench
+    std::fprintf(stderr, "pfem-bench-ddm: %s\n", e.what());
+    return 1;
+  }
   return 0;
 }
