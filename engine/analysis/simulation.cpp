@@ -83,8 +83,10 @@ void slide_walls(const Problem& problem, const mesh::FluidMesh& previous, NodeSt
       const double* dp = nodes.sensitivity(slide.particle, k);
       const auto& dh = dwall[static_cast<std::size_t>(slide.index) * P + k];
       const auto& [dhx, dhy, dtx, dty] = dh;
-      const double along = s.offset_derivative(nodes.x[slide.particle], nodes.y[slide.particle], dp[NodeState::kDx],
-                                               dp[NodeState::kDy], dh);
+      // Held at its reach, the node's offset is a constant of the wall, not the particle's.
+      const double along = !slide.follows ? 0.0
+                                          : s.offset_derivative(nodes.x[slide.particle], nodes.y[slide.particle],
+                                                                dp[NodeState::kDx], dp[NodeState::kDy], dh);
       double* dw = nodes.sensitivity(s.node, k);
       dw[NodeState::kDx] = dhx + along * tx + o * dtx, dw[NodeState::kDy] = dhy + along * ty + o * dty;
       if (free == kSlipX) dw[NodeState::kDvx] = dp[NodeState::kDvx];

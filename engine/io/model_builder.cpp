@@ -114,8 +114,11 @@ std::vector<Segment> add_walls(const pfem::v1::Model& model, double h, NodeState
         ++uses[node];
         if (j > 1) candidate_neighbours.back()[1] = node;  // the previous node was inside the piece
         if (j > 0 && j < count_pieces) {
-          // Less than half the spacing either way: it never reaches a neighbour's reach.
-          candidates.push_back({node, nodes.x[node], nodes.y[node], tx, ty, 0.49 * len / count_pieces});
+          // Freely less than half the spacing either way: it never reaches a neighbour's reach. It
+          // covers half the spacing and a hair (a foot at the very middle, as a grid row can be,
+          // is not lost to round-off between two nodes).
+          const double spacing = len / count_pieces;
+          candidates.push_back({node, nodes.x[node], nodes.y[node], tx, ty, 0.49 * spacing, (0.5 + 1e-9) * spacing});
           candidate_neighbours.push_back({previous, -1});
           candidate_slip.push_back(!w.slip() ? 0 : std::abs(tx) > 0.5 ? kSlipX : kSlipY);
           candidate_motion.push_back(motion_of[wi]);
