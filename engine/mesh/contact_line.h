@@ -14,7 +14,7 @@
 // when the neighbour has not moved, which then stays at its place, and otherwise stops at its
 // reach, 1 % of the spacing short. Without the sliver's rule the contact node stayed at its
 // place there, ending the surface half a spacing above or below the water: still water at
-// μ = 1e-3 whose surface lay at such a middle moved at 0.36 m/s and lost 0.6 % of its area in
+// μ = 1e-3 whose surface lay at such a middle moved at 0.36 m/s, its area off by 0.6 %, in
 // 2 s, and sloshing in a 0.7 m tank at h = 0.0163 m (its surface 0.3 mm off a middle) ran 6.8 %
 // slow with its waves growing.
 #include <array>

@@ -15,8 +15,8 @@ TEST(StillWaterBoxes, StaysAtRestInABoxOutOfStepWithH) { expect_still({0.2, 0.15
 
 // The side walls' nodes 6 mm apart (0.12 / 20) and the top row of particles at 10 h = 0.063 m,
 // at the very middle between the nodes at 0.060 and 0.066, beyond the free reach of both
-// (mesh/contact_line.h). With neither following the surface the water lost 0.33 % of its area
-// in 0.6 s and moved at 0.05 m/s.
+// (mesh/contact_line.h). With neither following the surface the water's area was off by up to
+// 0.33 % within 0.6 s, and it moved at 0.05 m/s.
 TEST(StillWaterBoxes, StaysAtRestWithItsSurfaceMidwayBetweenTwoWallNodes) {
   expect_still({0.2, 0.12, 0.063, 0.0063, 0.6});
 }
