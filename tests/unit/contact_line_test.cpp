@@ -1,6 +1,6 @@
 // Wall nodes sliding to the contact line (engine/mesh/contact_line.h): the remesher reports the
 // free edge from the last surface particle to the wall, and the wall node nearest that
-// particle's foot slides there (within its reach), the others stay home.
+// particle's foot slides there (within half the spacing), the others stay home.
 #include <gtest/gtest.h>
 
 #include <utility>
