@@ -33,7 +33,7 @@ struct SlidingWallNode {
   double home_x = 0.0, home_y = 0.0;  // its place on the wall line
   double tx = 0.0, ty = 0.0;          // unit tangent of the wall piece
   double reach = 0.0;                 // largest free slide either way [m]
-  double cover = 0.0;                 // a foot this near its place is its to follow: half the spacing [m]
+  double cover = 0.0;                 // a foot this near its place is its to follow: half the spacing and a hair [m]
   // The wall nodes next to it on its piece, behind and ahead of it along the tangent.
   std::array<std::int32_t, 2> neighbours{-1, -1};
 
