@@ -73,6 +73,7 @@ FormResult run_form(const LimitState& g, const NatafTransform& transform,
   r.u = s.u;
   r.g = s.g;
   r.gradient_u = s.gradient;
+  r.beta_resolution = s.beta_resolution;
   const double gn = s.has_gradient ? s.gradient.norm() : 0.0;
   r.alpha = gn > 0 ? Eigen::VectorXd(-s.gradient / gn) : Eigen::VectorXd::Zero(n);
   // Without a gradient (g not finite, or flat) there is no design point: beta and pf are NaN

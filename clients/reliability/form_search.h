@@ -17,6 +17,7 @@ struct SearchOutcome {
   bool has_gradient = false;  // g and gradient below belong to u
   double g = 0.0;
   Eigen::VectorXd gradient;
+  double beta_resolution = 0.0;  // > 0: converged to g's resolution (FormResult::beta_resolution)
 };
 
 // The two convergence tests shared by every method: |G| <= tol_g * g_scale and

@@ -5,7 +5,9 @@
 // direction). G is scaled by its value at the start point so that the merit function does not
 // depend on the units of g: unscaled, a g of order 1e-3 (a deflection in metres) gives
 // c |G| << ||u||^2 / 2 and the line search creeps towards the design point in small steps.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -15,6 +17,27 @@ namespace pfem::reliability::detail {
 
 namespace {
 constexpr double kShortestProgress = 1.0 / 1024.0;  // of the HL-RF step
+
+// How far g(u + du) departs from g(u) + du.(grad(u) + grad(u + du)) / 2. The trapezoid rule is
+// exact to second order, so what is left is g's jumps (a PFEM response's remeshing decisions)
+// and third-order terms.
+double trapezoid_departure(double g, const Eigen::VectorXd& grad, double g_new, const Eigen::VectorXd& grad_new,
+                           const Eigen::VectorXd& du) {
+  return std::abs(g_new - g - 0.5 * du.dot(grad + grad_new));
+}
+
+// Where g jumps by up to `resolution` |grad G| along the search direction, the limit state's
+// place along the normal is known to that distance in u and no better. The design point is then
+// as good as g allows when |G| is within the tolerance (the first design-point test), that
+// distance is within the tolerance on beta, and u's misalignment with alpha (the second test)
+// costs beta less than it: ||u|| - alpha.u, the part of the HL-RF step's change of beta that
+// does not come from G.
+bool converged_to_resolution(const Eigen::VectorXd& u, double g, const Eigen::VectorXd& gradient, double g_scale,
+                             double resolution, double tolerance) {
+  const double misalignment = u.norm() + gradient.dot(u) / gradient.norm();
+  return std::abs(g) <= tolerance * g_scale && resolution <= tolerance * std::max(1.0, u.norm()) &&
+         misalignment <= resolution;
+}
 }  // namespace
 
 bool design_point_converged(const Eigen::VectorXd& u, double g, const Eigen::VectorXd& gradient,
@@ -72,10 +95,12 @@ SearchOutcome search_ihlrf(StandardSpaceFunction& G, const Eigen::VectorXd& u0,
     Eigen::VectorXd grad_new;
     double g_new = 0.0;
     bool accepted = false;
+    double jump = 0.0;  // of g along d, beside what its gradients account for
     for (int j = 0; j < options.max_line_search_steps; ++j, step *= options.armijo_b) {
       u_new = u + step * d;
       g_new = G.value_and_gradient(u_new, grad_new);
       if (!std::isfinite(g_new)) continue;
+      jump = std::max(jump, trapezoid_departure(g, grad, g_new, grad_new, step * d));
       const double merit_new = 0.5 * u_new.squaredNorm() + c * std::abs(g_new) / g_scale;
       // (The rounding allowance lets the full step through once the merit function is flat to
       // machine precision, near convergence, instead of stalling on shrinking steps.)
@@ -89,6 +114,20 @@ SearchOutcome search_ihlrf(StandardSpaceFunction& G, const Eigen::VectorXd& u0,
     // linearisation held over no more than that, g is piecewise smooth on a finer scale than the
     // search's (a PFEM response between remeshing decisions), and such steps crept on.
     if (accepted && step < kShortestProgress) accepted = false;
+    if (!(accepted && step == 1.0)) {
+      const double resolution = jump / gn;
+      if (converged_to_resolution(u, g, grad, g_scale, resolution, options.tolerance)) {
+        out.converged = true;
+        out.beta_resolution = resolution;
+        char text[64];
+        std::snprintf(text, sizeof text, "%.3g", resolution);
+        out.message = std::string("converged to the resolution of g: |G| within the tolerance, and u's "
+                                  "misalignment with alpha costs beta less than g's jumps along the search direction "
+                                  "move the limit state (") +
+                      text + " in u)";
+        return out;
+      }
+    }
     if (!accepted) {
       if (!std::isfinite(g_new)) {
         out.message = "g is not finite along the search direction at iteration " + std::to_string(k);

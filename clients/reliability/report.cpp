@@ -72,7 +72,7 @@ std::string result_json(const Problem& problem, const AnalysisResult& result,
   w.field("problem", problem.name).field("description", problem.description);
   w.field("method", std::string(to_string(f.method)));
   w.field("converged", f.converged).field("message", f.message);
-  w.field("beta", f.beta).field("pf", f.pf);
+  w.field("beta", f.beta).field("pf", f.pf).field("beta_resolution", f.beta_resolution);
   w.field("iterations", f.iterations).field("evaluations", f.evaluations);
   w.field("gradient_evaluations", f.gradient_evaluations);
   w.field("gradient_source", f.gradient_source);
@@ -163,7 +163,7 @@ std::string summary_text(const Problem& problem, const AnalysisResult& result,
   out << "FORM  " << (f.converged ? "converged" : "NOT CONVERGED") << " after " << f.iterations
       << " iterations, " << f.evaluations << " evaluations of g (gradients: " << f.gradient_source
       << ")\n";
-  if (!f.converged) out << "      " << f.message << "\n";
+  if (!f.converged || f.beta_resolution > 0) out << "      " << f.message << "\n";
   if (result.simulations) {
     const SimulationStats& s = *result.simulations;
     // The model's evaluations include those made after FORM (SORM's curvatures, sampling).
@@ -179,7 +179,9 @@ std::string summary_text(const Problem& problem, const AnalysisResult& result,
     out << "      no design point: beta and pf are undefined\n";
     return out.str();
   }
-  out << "      beta = " << fmt("%.6g", f.beta) << "   pf = " << fmt("%.6e", f.pf) << "\n\n";
+  out << "      beta = " << fmt("%.6g", f.beta);
+  if (f.beta_resolution > 0) out << " (to about " << fmt("%.2g", f.beta_resolution) << ")";
+  out << "   pf = " << fmt("%.6e", f.pf) << "\n\n";
   char line[256];
   std::snprintf(line, sizeof line, "  %-10s %-16s %11s %11s %12s %9s %8s %12s %12s\n", "variable",
                 "distribution", "mean", "stddev", "x*", "u*", "alpha", "dbeta/dmean",

@@ -480,7 +480,9 @@ TEST(ReliabilityForm, IhlrfStopsWhenTheLineSearchFindsNoDecreaseTwice) {
 // closes in on the design point of s = 0.4 (beta = 3 / sqrt(1.16)) until a step passes the line
 // search only while it stays on its stripe, and then crept on in steps of ~1e-5 (50 iterations
 // and 335 evaluations to max_iterations). A step below 1/1024 of the HL-RF step counts as no
-// decrease, and two in a row stop the search (29 iterations, 132 evaluations).
+// decrease, and two in a row stop the search (29 iterations, 132 evaluations). g's jumps between
+// stripes place the limit state only to ~0.15 in u: a tolerance of 1e-6 on beta is tighter than
+// that, so the search does not count as converged to g's resolution either.
 class StripedLimitState final : public rel::LimitState {
  public:
   std::size_t num_variables() const override { return 2; }
@@ -506,4 +508,31 @@ TEST(ReliabilityForm, IhlrfStopsWhenOnlyTinyStepsPassTheLineSearch) {
   EXPECT_LT(r.iterations, options.max_iterations);
   EXPECT_LT(r.evaluations, 150);
   EXPECT_NEAR(r.beta, 3.0 / std::sqrt(1.16), 1e-4);  // where it stopped: at that design point
+}
+
+// The striped limit state above with a tolerance of 0.1: the design point of either slope lies
+// on a stripe of the other, so u stays misaligned with alpha by ~0.18 rad and the second
+// design-point test (0.1) cannot pass; the search stopped unconverged. g's jumps along the
+// search direction place the limit state to ~0.15 in u, within the tolerance on beta (0.1
+// beta), and the misalignment costs beta less than that: converged to g's resolution, which
+// must then cover the design points of both slopes, beta = 3 / sqrt(1 + s^2).
+TEST(ReliabilityForm, IhlrfConvergesToTheResolutionOfALimitStateThatJumps) {
+  const StripedLimitState g;
+  const rel::NatafTransform t({Distribution::normal(0.0, 1.0), Distribution::normal(0.0, 1.0)},
+                              Eigen::MatrixXd::Identity(2, 2));
+  rel::FormOptions options;
+  options.tolerance = 0.1;
+  const rel::FormResult r = rel::run_form(g, t, options);
+  std::printf("%s: %d iterations, %d evaluations, beta %.5f to about %.3g\n", r.message.c_str(), r.iterations,
+              r.evaluations, r.beta, r.beta_resolution);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_NE(r.message.find("converged to the resolution of g"), std::string::npos) << r.message;
+  EXPECT_GT(r.beta_resolution, 0.0);
+  EXPECT_LE(r.beta_resolution, options.tolerance * r.beta);
+  for (double s : {0.2, 0.4}) EXPECT_LE(std::abs(r.beta - 3.0 / std::sqrt(1.0 + s * s)), r.beta_resolution) << s;
+  // Where both tests pass, no resolution is reported.
+  const rel::FormResult exact = rel::run_form(rel::ExpressionLimitState("3 - x1 + 0.2 * x2", {"x1", "x2"}), t, options);
+  ASSERT_TRUE(exact.converged) << exact.message;
+  EXPECT_EQ(exact.beta_resolution, 0.0);
+  EXPECT_NEAR(exact.beta, 3.0 / std::sqrt(1.04), 1e-9);
 }
