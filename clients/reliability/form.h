@@ -38,7 +38,9 @@ struct FormOptions {
   int max_iterations = 100;       // ihlrf iterations; NLopt methods get 50 x this many evaluations
   // Convergence: |G(u)| <= tolerance |G(u0)| and ||u - (alpha.u) alpha|| <= tolerance max(1, ||u||)
   // (the NLopt methods are allowed 100 x tolerance on the second test: their objective is flat
-  // along the surface, so beta is still accurate to about tolerance^2 there).
+  // along the surface, so beta is still accurate to about tolerance^2 there). iHL-RF also counts
+  // as converged a point where g's jumps hide the rest of the second test from its line search
+  // (FormResult::beta_resolution).
   double tolerance = 1e-6;
   double fd_step = 1e-6;          // u-space step of finite-difference gradients (g without gradient)
   std::vector<double> start_u;    // start point in u; empty: the mean point T(mean of x)
