@@ -443,6 +443,12 @@ TEST(ReliabilityForm, NoDesignPointLeavesBetaUndefined) {
   }
 }
 
+// x = u: two independent standard normals.
+rel::NatafTransform two_standard_normals() {
+  return rel::NatafTransform({Distribution::normal(0.0, 1.0), Distribution::normal(0.0, 1.0)},
+                             Eigen::MatrixXd::Identity(2, 2));
+}
+
 // A limit state whose gradient disagrees with its values, as a PFEM response's exact gradient
 // does across a jump where a remeshing decision changes: g = 3 - x1, but dg/dx1 reported +1.
 // Every step along the search direction raises the merit function; iHL-RF stops after two line
@@ -461,8 +467,7 @@ class MisleadingLimitState final : public rel::LimitState {
 
 TEST(ReliabilityForm, IhlrfStopsWhenTheLineSearchFindsNoDecreaseTwice) {
   const MisleadingLimitState g;
-  const rel::NatafTransform t({Distribution::normal(0.0, 1.0), Distribution::normal(0.0, 1.0)},
-                              Eigen::MatrixXd::Identity(2, 2));
+  const rel::NatafTransform t = two_standard_normals();
   rel::FormOptions options;
   options.start_u = {0.5, 0.5};
   const rel::FormResult r = rel::run_form(g, t, options);
@@ -497,8 +502,7 @@ class StripedLimitState final : public rel::LimitState {
 
 TEST(ReliabilityForm, IhlrfStopsWhenOnlyTinyStepsPassTheLineSearch) {
   const StripedLimitState g;
-  const rel::NatafTransform t({Distribution::normal(0.0, 1.0), Distribution::normal(0.0, 1.0)},
-                              Eigen::MatrixXd::Identity(2, 2));
+  const rel::NatafTransform t = two_standard_normals();
   rel::FormOptions options;
   options.max_iterations = 50;
   const rel::FormResult r = rel::run_form(g, t, options);
@@ -518,8 +522,7 @@ TEST(ReliabilityForm, IhlrfStopsWhenOnlyTinyStepsPassTheLineSearch) {
 // must then cover the design points of both slopes, beta = 3 / sqrt(1 + s^2).
 TEST(ReliabilityForm, IhlrfConvergesToTheResolutionOfALimitStateThatJumps) {
   const StripedLimitState g;
-  const rel::NatafTransform t({Distribution::normal(0.0, 1.0), Distribution::normal(0.0, 1.0)},
-                              Eigen::MatrixXd::Identity(2, 2));
+  const rel::NatafTransform t = two_standard_normals();
   rel::FormOptions options;
   options.tolerance = 0.1;
   const rel::FormResult r = rel::run_form(g, t, options);
