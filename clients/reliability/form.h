@@ -70,8 +70,8 @@ struct FormResult {
   double g = 0.0;                // G(u*)
   // 0 when the design-point tests passed. Else the search stopped where g's jumps (a PFEM
   // response's remeshing decisions) place the limit state only to within this distance in u
-  // along alpha, within the tolerance on beta, and the HL-RF step promised less: beta is known
-  // to about this much (iHL-RF only).
+  // along alpha, within the tolerance on beta, and u's misalignment with alpha costs beta less:
+  // beta is known to about this much (iHL-RF only).
   double beta_resolution = 0.0;
   std::string gradient_source;
 };

@@ -114,6 +114,7 @@ SearchOutcome search_ihlrf(StandardSpaceFunction& G, const Eigen::VectorXd& u0,
     // linearisation held over no more than that, g is piecewise smooth on a finer scale than the
     // search's (a PFEM response between remeshing decisions), and such steps crept on.
     if (accepted && step < kShortestProgress) accepted = false;
+    // Where the full step failed, the points tried have measured g's jumps along d.
     if (!(accepted && step == 1.0)) {
       const double resolution = jump / gn;
       if (converged_to_resolution(u, g, grad, g_scale, resolution, options.tolerance)) {

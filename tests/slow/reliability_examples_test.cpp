@@ -66,7 +66,7 @@ TEST(ReliabilityExamples, ObstacleFormWithDdmConverges) {
 // within the example's tolerance, 5 % of g at the means (0.70 mm).
 TEST(ReliabilityExamples, WaveFlumeFormWithDdmConverges) {
   const Form f = converged_form("wave-flume.json", 0.05 * 7.0e-4);
-  // 1.806 to about 0.07 (commit 620915d); at h = 10 mm (1.548 before 298fd8c) g was dominated by
+  // 1.806 to about 0.07 (commit 1fc26a2); at h = 10 mm (1.548 before 298fd8c) g was dominated by
   // the alpha test's events at the plate and had no one design point (README, Reliability of a
   // PFEM model). A band for the engine's remeshing rules, as above.
   EXPECT_NEAR(f.r.form.beta, 1.80, 0.15);
