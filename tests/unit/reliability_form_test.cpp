@@ -500,13 +500,18 @@ class StripedLimitState final : public rel::LimitState {
   std::string gradient_source() const override { return "exact on each stripe"; }
 };
 
+// iHL-RF on the striped limit state from the mean point, printing where it ended.
+rel::FormResult striped_form(const rel::FormOptions& options) {
+  const rel::FormResult r = rel::run_form(StripedLimitState{}, two_standard_normals(), options);
+  std::printf("%s: %d iterations, %d evaluations, beta %.5f to about %.3g\n", r.message.c_str(), r.iterations,
+              r.evaluations, r.beta, r.beta_resolution);
+  return r;
+}
+
 TEST(ReliabilityForm, IhlrfStopsWhenOnlyTinyStepsPassTheLineSearch) {
-  const StripedLimitState g;
-  const rel::NatafTransform t = two_standard_normals();
   rel::FormOptions options;
   options.max_iterations = 50;
-  const rel::FormResult r = rel::run_form(g, t, options);
-  std::printf("%s: %d iterations, %d evaluations, beta %.5f\n", r.message.c_str(), r.iterations, r.evaluations, r.beta);
+  const rel::FormResult r = striped_form(options);
   EXPECT_FALSE(r.converged);
   EXPECT_NE(r.message.find("none beyond 1/1024 of the HL-RF step"), std::string::npos) << r.message;
   EXPECT_LT(r.iterations, options.max_iterations);
@@ -521,20 +526,17 @@ TEST(ReliabilityForm, IhlrfStopsWhenOnlyTinyStepsPassTheLineSearch) {
 // beta), and the misalignment costs beta less than that: converged to g's resolution, which
 // must then cover the design points of both slopes, beta = 3 / sqrt(1 + s^2).
 TEST(ReliabilityForm, IhlrfConvergesToTheResolutionOfALimitStateThatJumps) {
-  const StripedLimitState g;
-  const rel::NatafTransform t = two_standard_normals();
   rel::FormOptions options;
   options.tolerance = 0.1;
-  const rel::FormResult r = rel::run_form(g, t, options);
-  std::printf("%s: %d iterations, %d evaluations, beta %.5f to about %.3g\n", r.message.c_str(), r.iterations,
-              r.evaluations, r.beta, r.beta_resolution);
+  const rel::FormResult r = striped_form(options);
   ASSERT_TRUE(r.converged) << r.message;
   EXPECT_NE(r.message.find("converged to the resolution of g"), std::string::npos) << r.message;
   EXPECT_GT(r.beta_resolution, 0.0);
   EXPECT_LE(r.beta_resolution, options.tolerance * r.beta);
   for (double s : {0.2, 0.4}) EXPECT_LE(std::abs(r.beta - 3.0 / std::sqrt(1.0 + s * s)), r.beta_resolution) << s;
   // Where both tests pass, no resolution is reported.
-  const rel::FormResult exact = rel::run_form(rel::ExpressionLimitState("3 - x1 + 0.2 * x2", {"x1", "x2"}), t, options);
+  const rel::ExpressionLimitState linear("3 - x1 + 0.2 * x2", {"x1", "x2"});
+  const rel::FormResult exact = rel::run_form(linear, two_standard_normals(), options);
   ASSERT_TRUE(exact.converged) << exact.message;
   EXPECT_EQ(exact.beta_resolution, 0.0);
   EXPECT_NEAR(exact.beta, 3.0 / std::sqrt(1.04), 1e-9);
