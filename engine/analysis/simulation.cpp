@@ -123,7 +123,8 @@ mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& prev
   slide_walls(problem, previous, nodes, t);
   std::vector<std::uint8_t> boundary(previous.free_surface.size());
   for (std::size_t i = 0; i < boundary.size(); ++i)
-    boundary[i] = previous.free_surface[i] || (nodes.kind[i] == mesh::NodeKind::Fluid && !previous.in_mesh[i]);
+    boundary[i] = previous.free_surface[i] || (i < previous.in_mesh.size() && nodes.kind[i] == mesh::NodeKind::Fluid &&
+                                               !previous.in_mesh[i]);
   options.previous_boundary = boundary;
   options.previous_triangles = previous.triangles;
   options.vx = nodes.vx, options.vy = nodes.vy;
@@ -185,17 +186,21 @@ int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& 
 // New particles at the middle of the edges that have grown too long (see edges_to_split), with
 // the mean velocity and pressure of the edge's ends (and so the mean sensitivities); at a wall or
 // beam node, the pressure of the edge's side of its lines.
+// A particle on an edge of the free surface is on that surface too: mesh.free_surface grows to
+// flag it for the next remeshing's gap rules (RemeshOptions::previous_boundary).
 // lines: the wall and beam segments.
-int insert_particles(const mesh::FluidMesh& mesh, const Problem& problem,
-                     std::span<const std::array<std::int32_t, 2>> lines, NodeState& nodes) {
+int insert_particles(mesh::FluidMesh& mesh, const Problem& problem, std::span<const std::array<std::int32_t, 2>> lines,
+                     NodeState& nodes) {
   if (problem.insertion_length <= 0.0) return 0;
   const auto edges = mesh::edges_to_split(mesh, nodes.x, nodes.y, nodes.kind, problem.insertion_length * problem.h,
                                           problem.interior_insertion_length * problem.h, {lines, 0.5 * problem.h});
-  for (const auto& [a, b, side] : edges) {
+  for (const auto& [a, b, side, on_surface] : edges) {
     const bool multi = mesh.multi_sided(b);
     const int i = nodes.add(0.5 * (nodes.x[a] + nodes.x[b]), 0.5 * (nodes.y[a] + nodes.y[b]), mesh::NodeKind::Fluid,
                             0.5 * (nodes.vx[a] + nodes.vx[b]), 0.5 * (nodes.vy[a] + nodes.vy[b]));
     nodes.x0[i] = nodes.x[i], nodes.y0[i] = nodes.y[i];  // displacements count from its birth
+    mesh.free_surface.resize(nodes.size(), 0);
+    mesh.free_surface[i] = on_surface;
     nodes.p[i] = 0.5 * (nodes.p[a] + nodes.pressure(b, multi, side));
     for (int k = 0; k < nodes.num_params; ++k) {
       const double *da = nodes.sensitivity(a, k), *db = nodes.sensitivity(b, k);

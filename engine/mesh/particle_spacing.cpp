@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 namespace pfem::mesh {
 
@@ -63,6 +65,14 @@ std::vector<SplitEdge> edges_to_split(const FluidMesh& mesh, std::span<const dou
       if (distance_to_segment(mx, my, x[w], y[w], x[u], y[u]) < walls.distance) return false;
     return !along[w].empty();
   };
+  // The edges between two surface particles that lie in one triangle only: the free surface's own.
+  std::map<std::pair<std::int32_t, std::int32_t>, int> surface_pairs;
+  for (const auto& t : mesh.triangles)
+    for (int e = 0; e < 3; ++e) {
+      const std::int32_t a = t[e], b = t[(e + 1) % 3];
+      if (kind[a] == NodeKind::Fluid && kind[b] == NodeKind::Fluid && mesh.free_surface[a] && mesh.free_surface[b])
+        ++surface_pairs[std::minmax(a, b)];
+    }
   std::vector<SplitEdge> edges;
   std::vector<std::uint8_t> used(x.size(), 0);
   const double surface2 = surface_length * surface_length, interior2 = interior_length * interior_length;
@@ -72,16 +82,15 @@ std::vector<SplitEdge> edges_to_split(const FluidMesh& mesh, std::span<const dou
       const int cb = ca == e ? (e + 1) % 3 : e;
       const std::int32_t a = mesh.triangles[t][ca], b = mesh.triangles[t][cb];
       if (used[a] || used[b] || kind[a] != NodeKind::Fluid || kind[b] == NodeKind::Removed) continue;
-      // Not along the free surface: a particle there would let the alpha test close gaps in
-      // the surface and add water.
-      if (mesh.free_surface[a] && mesh.free_surface[b]) continue;
-      const double dx = x[a] - x[b], dy = y[a] - y[b];
-      const bool interior = !mesh.free_surface[a] && !mesh.free_surface[b];
-      if (dx * dx + dy * dy <= (interior ? interior2 : surface2)) continue;
       const bool wall = kind[b] != NodeKind::Fluid;
+      const bool interior = !mesh.free_surface[a] && !mesh.free_surface[b];
+      // Both ends on the surface: an edge of the surface itself, or a chord through the water.
+      const bool both = !wall && mesh.free_surface[a] && mesh.free_surface[b];
+      const double dx = x[a] - x[b], dy = y[a] - y[b];
+      if (dx * dx + dy * dy <= (interior || both ? interior2 : surface2)) continue;
       if (wall && (!interior || !clear_of_walls(a, b))) continue;
       used[a] = used[b] = 1;
-      edges.push_back({a, b, wall ? mesh.side(t, cb) : 0});
+      edges.push_back({a, b, wall ? mesh.side(t, cb) : 0, both && surface_pairs[std::minmax(a, b)] == 1});
     }
   }
   return edges;

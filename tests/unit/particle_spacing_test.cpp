@@ -48,10 +48,27 @@ TEST(ParticleSpacing, EdgesTouchingTheSurfaceUseTheSurfaceLength) {
   Quad q(1.8);
   q.mesh.free_surface[0] = 1;  // 0-1 (1.8) touches the surface; 2-3 (1.8) is inside
   EXPECT_EQ(q.split(1.6, 2.0), (std::vector<Edge>{{0, 1}}));
-  q.mesh.free_surface[1] = 1;  // 0-1 now runs along the surface: never split; the diagonal is next
+  q.mesh.free_surface[1] = 1;  // 0-1 now runs along the surface: as long as an interior edge may be
   EXPECT_EQ(q.split(1.6, 2.0), (std::vector<Edge>{{1, 2}}));
-  q.mesh.free_surface[2] = 1, q.mesh.free_surface[3] = 1;  // every edge along the surface
-  EXPECT_TRUE(q.split(1.0, 1.0).empty());
+  EXPECT_EQ(q.split(2.0, 1.7), (std::vector<Edge>{{0, 1}, {3, 2}}));
+}
+
+// Of the edges between two surface particles, those in one triangle are the surface's own (their
+// new particle is on the surface); the diagonal between both triangles is a chord through the water.
+TEST(ParticleSpacing, EdgesBetweenSurfaceParticlesTellTheSurfaceFromAChord) {
+  Quad q(2.1);  // every node on the surface: 0-1 and 3-2 of 2.1, the diagonal 1-2 of 2.16
+  q.mesh.free_surface.assign(4, 1);
+  const auto edges = pfem::mesh::edges_to_split(q.mesh, q.x, q.y, q.kind, 1.6, 2.0, {});
+  ASSERT_EQ(edges.size(), 2u);
+  EXPECT_EQ((Edge{edges[0].a, edges[0].b}), (Edge{0, 1}));
+  EXPECT_TRUE(edges[0].on_surface);
+  EXPECT_EQ((Edge{edges[1].a, edges[1].b}), (Edge{3, 2}));
+  EXPECT_TRUE(edges[1].on_surface);
+  q.x[1] = q.x[3] = 1.9;  // 0-1 and 3-2 of 1.9 stay whole; the diagonal (1.96) goes beyond 1.9
+  const auto chord = pfem::mesh::edges_to_split(q.mesh, q.x, q.y, q.kind, 1.6, 1.9, {});
+  ASSERT_EQ(chord.size(), 1u);
+  EXPECT_EQ((Edge{chord[0].a, chord[0].b}), (Edge{1, 2}));
+  EXPECT_FALSE(chord[0].on_surface);
 }
 
 // 0 and 2 on a wall along x = 0 (the segment 0-2), particles 1 and 3 at x = 2.5: the edges 1-0
