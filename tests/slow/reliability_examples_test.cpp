@@ -77,7 +77,8 @@ TEST(ReliabilityExamples, WaveFlumeFormWithDdmConverges) {
 }
 
 // The same limit state on the model's own mesh (h = 10 mm, the plate in 20 elements), value-only
-// runs along the ray u = R (0.5648, -0.8252) through the design point: g falls as the waves grow
+// runs along the ray u = R (0.5648, -0.8252) through the point where this FORM stopped on the
+// engine of 298fd8c (README, Reliability of a PFEM model): g falls as the waves grow
 // and the plate softens. With the free surface's own edges never split, the crest running up the
 // plate stretched a surface triangle until the alpha test dropped it, at times that move with the
 // parameters, and g along this ray went -33, -163, +49, -209 um (R = 1.5, 1.6, 1.7, 1.8); now
