@@ -54,7 +54,8 @@ void add_work(RunSummary& sum, const StepReport& r) {
 // home (mesh/contact_line.h), both as the walls are at time t, a slip node with the wall's
 // velocity at its home (slip_wall_remap.h); a slid node's position follows its particle's
 // along the wall, and so does its position sensitivity: with home h, tangent u and
-// offset o = (p - h).u, the node h + o u has the derivative dh + ((dp - dh).u + (p - h).du) u + o du.
+// offset o = (p - h).u (to the foot; to the point level with p, ((p - h) x l) / (u x l) for the
+// level l), the node h + o u has the derivative dh + do u + o du (SlidingWallNode).
 // A slid slip node takes its particle's velocity along the wall (its free component): with one of
 // its own, kept from step to step while its place is reset, it ran at 0.035 m/s up a slip paddle
 // beside water rising at 0.002 m/s, and the paddle's waves came out 11 % low.
@@ -71,7 +72,9 @@ void slide_walls(const Problem& problem, const mesh::FluidMesh& previous, NodeSt
       nodes.sensitivity(s.node, k)[NodeState::kDy] = dwall[j * P + k][1];
     }
   }
-  for (const auto& slide : mesh::contact_line_slides(previous, nodes.x, nodes.y, sliding, problem.wall_neighbours)) {
+  const double g = std::hypot(problem.gx, problem.gy);
+  const std::array<double, 2> level = g > 0.0 ? std::array{-problem.gy / g, problem.gx / g} : std::array{0.0, 0.0};
+  for (const auto& slide : mesh::contact_line_slides(previous, nodes.x, nodes.y, sliding, problem.wall_neighbours, level)) {
     const mesh::SlidingWallNode& s = sliding[slide.index];
     const double tx = s.tx, ty = s.ty, o = slide.offset;
     nodes.x[s.node] = s.home_x + o * tx;
@@ -85,8 +88,9 @@ void slide_walls(const Problem& problem, const mesh::FluidMesh& previous, NodeSt
       const auto& [dhx, dhy, dtx, dty] = dh;
       // Held at its reach, the node's offset is a constant of the wall, not the particle's.
       const double along = !slide.follows ? 0.0
-                                          : s.offset_derivative(nodes.x[slide.particle], nodes.y[slide.particle],
-                                                                dp[NodeState::kDx], dp[NodeState::kDy], dh);
+                           : slide.level ? s.level_offset_derivative(o, dp[NodeState::kDx], dp[NodeState::kDy], dh, level)
+                                         : s.offset_derivative(nodes.x[slide.particle], nodes.y[slide.particle],
+                                                               dp[NodeState::kDx], dp[NodeState::kDy], dh);
       double* dw = nodes.sensitivity(s.node, k);
       dw[NodeState::kDx] = dhx + along * tx + o * dtx, dw[NodeState::kDy] = dhy + along * ty + o * dty;
       if (free == kSlipX) dw[NodeState::kDvx] = dp[NodeState::kDvx];
