@@ -11,6 +11,7 @@
 #include <span>
 #include <sstream>
 
+#include "engine/analysis/beam_contact_check.h"
 #include "engine/analysis/moving_walls.h"
 #include "engine/analysis/recorders.h"
 #include "engine/analysis/run_state.h"
@@ -294,6 +295,8 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
     }
     sum.remesh_seconds += since(t0);
     sum.fluid_area_initial = sum.fluid_area_final = fluid_area(mesh, nodes);
+    for (auto& w : beam_contact_warnings(mesh, nodes, problem.beam_segments, problem.gx, problem.gy, problem.h))
+      sum.warnings.push_back(std::move(w));
     record(0.0);
     if (vtk) vtk->write(0.0, nodes, mesh, model);
   }

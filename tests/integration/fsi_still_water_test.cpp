@@ -8,7 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
+#include <utility>
 
 #include "engine/analysis/run.h"
 #include "engine/io/model_io.h"
@@ -209,6 +211,39 @@ TEST(FsiStillWater, WaterBelowTheTipAtWatersViscositySettles) {
   EXPECT_NEAR(last[0], tip, 0.02 * tip);
   EXPECT_NEAR(std::abs(last[2]), moment, 0.02 * moment);
   EXPECT_LT(r.summary.fluid_area_max_drift, 0.005);
+}
+
+// Water 0.04 m deep against the cantilever: with 20 elements (2.5 mm) a node lies at its level,
+// with 23 (2.17 mm) the level lies between the nodes at 39.13 and 41.30 mm, where a beam's node
+// cannot follow it (engine/analysis/beam_contact_check.h): the run warns with the distance from
+// the node that ends the surface to the level.
+TEST(FsiStillWater, ASurfaceMeetingTheBeamBetweenTwoNodesIsWarnedOf) {
+  for (const int elements : {20, 23}) {
+    std::string model = still_water_model();
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{R"("max": {"x": 0.05, "y": 0.05})", R"("max": {"x": 0.05, "y": 0.04})"},
+                                   {R"("elements": 20)", R"("elements": )" + std::to_string(elements)}}) {
+      const auto at = model.find(from);
+      ASSERT_NE(at, std::string::npos) << from;
+      model.replace(at, from.size(), to);
+    }
+    RunOptions options;
+    options.t_end = 0.001;
+    const RunResult r = run(parse_model_json(model), options);
+    ASSERT_EQ(r.summary.status, RunStatus::kCompleted) << r.summary.message;
+    if (elements == 20) {
+      EXPECT_TRUE(r.summary.warnings.empty()) << r.summary.warnings.front();
+      continue;
+    }
+    ASSERT_EQ(r.summary.warnings.size(), 1u);
+    const std::string& w = r.summary.warnings[0];
+    double mm = 0.0, x = 0.0, y = 0.0;
+    ASSERT_EQ(std::sscanf(w.c_str(), "the water's surface meets a beam %lf mm from its node at (%lf, %lf)", &mm, &x, &y), 3) << w;
+    const double spacing = kL / 23.0;
+    const double node = std::abs(y - 18 * spacing) < std::abs(y - 19 * spacing) ? 18 * spacing : 19 * spacing;
+    EXPECT_NEAR(y, node, 1e-6) << w;
+    EXPECT_NEAR(x, kL, 1e-9) << w;
+    EXPECT_NEAR(mm, 1e3 * std::abs(node - 0.04), 0.005) << w;  // printed to 0.01 mm
+  }
 }
 
 }  // namespace
