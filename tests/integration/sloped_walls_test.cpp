@@ -22,7 +22,7 @@ namespace {
 
 constexpr double kG = 9.81, kRho = 1000.0;
 
-// A model with one no-slip wall `points` (a polyline of "x, y" pairs) and one polygon of water.
+// A model with one no-slip wall "tank" and one polygon of water, each a list of point() objects.
 std::string model(const std::string& wall, const std::string& water, double h, double dt, double t_end,
                   const std::string& recorders, const std::string& extra = "") {
   char head[512];
@@ -123,7 +123,8 @@ TEST(SlopedWalls, SloshingInARightAngledVTankSwingsWithKirchhoffsPeriod) {
 }
 
 TEST(SlopedWalls, DdmOfTheVTanksGaugeMatchesCentralFdm) {
-  // The contact nodes on both walls follow the points level with their particles at every step.
+  // The contact nodes on both walls go to the points level with their particles: their position
+  // sensitivities are the level offset's derivative.
   const VTank tank;
   RunOptions options;
   options.t_end = 0.75;
