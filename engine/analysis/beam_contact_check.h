@@ -16,8 +16,9 @@
 
 namespace pfem {
 
-// One warning per beam node that ends a free edge from a surface particle whose level (square to
-// gravity (gx, gy)) crosses the beam's element at that node more than h / 10 from the node.
+// One warning per beam node that ends a free edge from a surface particle (FluidMesh::
+// contact_edges) whose level (square to gravity (gx, gy)) crosses the beam's element at that node
+// more than h / 10 from the node.
 // beam_segments: the node pairs of the beam elements.
 std::vector<std::string> beam_contact_warnings(const mesh::FluidMesh& mesh, const NodeState& nodes,
                                                std::span<const std::array<std::int32_t, 2>> beam_segments,

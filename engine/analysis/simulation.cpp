@@ -73,8 +73,7 @@ void slide_walls(const Problem& problem, const mesh::FluidMesh& previous, NodeSt
       nodes.sensitivity(s.node, k)[NodeState::kDy] = dwall[j * P + k][1];
     }
   }
-  const double g = std::hypot(problem.gx, problem.gy);
-  const std::array<double, 2> level = g > 0.0 ? std::array{-problem.gy / g, problem.gx / g} : std::array{0.0, 0.0};
+  const std::array<double, 2> level = mesh::level_direction(problem.gx, problem.gy);
   for (const auto& slide : mesh::contact_line_slides(previous, nodes.x, nodes.y, sliding, problem.wall_neighbours, level)) {
     const mesh::SlidingWallNode& s = sliding[slide.index];
     const double tx = s.tx, ty = s.ty, o = slide.offset;

@@ -67,6 +67,12 @@ struct SlidingWallNode {
   static constexpr double kLevelWall = 1e-6;
 };
 
+// The unit level direction, square to gravity (gx, gy); {0, 0} without gravity.
+inline std::array<double, 2> level_direction(double gx, double gy) {
+  const double g = std::hypot(gx, gy);
+  return g > 0.0 ? std::array{-gy / g, gx / g} : std::array{0.0, 0.0};
+}
+
 // Where a sliding node goes: sliding[index] at its home + offset * tangent, following the
 // particle's position.
 struct WallSlide {
@@ -78,7 +84,7 @@ struct WallSlide {
 };
 
 // The slides for the contact edges of the previous mesh (FluidMesh::contact_edges: a free edge
-// between a particle and a wall node), at the current particle positions x, y. For each contact
+// between a particle and a wall node; a structure node's, which does not slide, is passed over), at the current particle positions x, y. For each contact
 // edge, of the sliding nodes among the wall node itself and its wall neighbours (neighbours[wall]:
 // indices into `sliding`) that cover the wall's point level with the particle (level: a unit
 // vector square to gravity, {0, 0} for none), or else its foot, the one nearest that point

@@ -42,8 +42,9 @@ FluidMesh extract_fluid_mesh(const Delaunay& tri, std::span<const NodeKind> kind
       // Edge e is opposite vertex e: its ends are vertices ccw(e) and cw(e).
       const std::int32_t a = f->vertex(Delaunay::ccw(e))->info(), b = f->vertex(Delaunay::cw(e))->info();
       mesh.free_surface[a] = mesh.free_surface[b] = 1;
-      if (kind[a] == NodeKind::Fluid && kind[b] == NodeKind::Wall) mesh.contact_edges.push_back({a, b});
-      if (kind[b] == NodeKind::Fluid && kind[a] == NodeKind::Wall) mesh.contact_edges.push_back({b, a});
+      const auto on_line = [&](std::int32_t i) { return kind[i] == NodeKind::Wall || kind[i] == NodeKind::Structure; };
+      if (kind[a] == NodeKind::Fluid && on_line(b)) mesh.contact_edges.push_back({a, b});
+      if (kind[b] == NodeKind::Fluid && on_line(a)) mesh.contact_edges.push_back({b, a});
     }
   }
   return mesh;

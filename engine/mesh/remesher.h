@@ -73,8 +73,8 @@ struct FluidMesh {
   // per node: on a free edge of the kept region (a boundary edge with a fluid end that is not
   // a constraint); wall and structure nodes where the free surface meets them are included.
   std::vector<std::uint8_t> free_surface;
-  // Free edges from a fluid particle to a wall node (particle, wall node): where the free
-  // surface meets a wall (see contact_line.h), in the order of the triangulation's faces.
+  // Free edges from a fluid particle to a wall or structure node (particle, node): where the free
+  // surface meets a wall (see contact_line.h) or a beam, in the order of the triangulation's faces.
   std::vector<std::array<std::int32_t, 2>> contact_edges;
   // The sides of the wall and beam lines (the constraints) at a node: its constrained edges cut
   // the plane around it into sectors, and the water in each sector has its own pressure there
