@@ -13,6 +13,9 @@ BoundaryLoad boundary_load(std::span<const std::array<std::int32_t, 2>> segments
                            double ay, const fluid::FluidSeed* seed, int k) {
   std::set<std::pair<std::int32_t, std::int32_t>> on_boundary;
   for (const auto& [a, b] : segments) on_boundary.insert(std::minmax(a, b));
+  for (const auto& [node, a, b] : mesh.riders)  // a rider splits its segment in two
+    if (on_boundary.count(std::minmax(a, b)))
+      on_boundary.insert(std::minmax(a, node)), on_boundary.insert(std::minmax(node, b));
   const Dual mu{fluid.mu, seed ? seed->mu : 0.0}, t{thickness, seed ? seed->thickness : 0.0};
   const Dual third{1.0 / 3.0, 0.0}, half{0.5, 0.0}, sixth{1.0 / 6.0, 0.0}, two{2.0, 0.0};
   const Dual X0{ax, 0.0}, Y0{ay, 0.0};

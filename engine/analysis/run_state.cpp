@@ -18,7 +18,13 @@ void archive(StateArchive& a, NodeState& n) {
     throw CheckpointError("checkpoint: node fields of different lengths");
 }
 
-void archive(StateArchive& a, mesh::FluidMesh& m) { a(m.triangles), a(m.in_mesh), a(m.free_surface), a(m.contact_edges), a(m.sides), a(m.corner_side);
+void archive(StateArchive& a, mesh::FluidMesh& m) {
+  a(m.triangles), a(m.in_mesh), a(m.free_surface), a(m.contact_edges), a(m.sides), a(m.corner_side);
+  std::vector<std::array<std::int32_t, 3>> riders;
+  for (const auto& r : m.riders) riders.push_back({r.node, r.a, r.b});
+  a(riders);
+  m.riders.clear();
+  for (const auto& [node, first, second] : riders) m.riders.push_back({node, first, second});
 }
 
 void archive(StateArchive& a, Histories& h) { a(h.columns), a(h.time), a(h.rows); }

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "engine/analysis/beam_contact_check.h"
+#include "engine/analysis/beam_rider_nodes.h"
 #include "engine/analysis/moving_walls.h"
 #include "engine/analysis/recorders.h"
 #include "engine/analysis/run_state.h"
@@ -111,9 +112,9 @@ mesh::FluidMesh remesh_nodes(const Problem& problem, const NodeState& nodes, mes
 
 // Remeshes nodes after the step that used previous for a step of dt (see
 // RemeshOptions::previous_boundary, previous_triangles), with the wall nodes slid to its contact
-// lines first (t: the time now).
+// lines and the beam riders (if any) placed at them first (t: the time now).
 mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& previous, NodeState& nodes,
-                             mesh::RemeshOptions options, double dt, double t) {
+                             BeamRiderNodes* riders, mesh::RemeshOptions options, double dt, double t) {
   // A slip wall's node out of the water keeps no velocity along its wall (a moving wall's normal one
   // is the wall's): one it had when last wet (or next to a paddle that then stood over it) would be
   // an impulse on the water that reaches it again. Slid to a contact particle, it takes the
@@ -125,6 +126,7 @@ mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& prev
     for (int k = 0; k < nodes.num_params; ++k) nodes.sensitivity(i, k)[along_x ? NodeState::kDvx : NodeState::kDvy] = 0.0;
   }
   slide_walls(problem, previous, nodes, t);
+  if (riders) options.riders = riders->place(previous, nodes, mesh::level_direction(problem.gx, problem.gy), problem.h);
   std::vector<std::uint8_t> boundary(previous.free_surface.size());
   for (std::size_t i = 0; i < boundary.size(); ++i)
     boundary[i] = previous.free_surface[i] || (i < previous.in_mesh.size() && nodes.kind[i] == mesh::NodeKind::Fluid &&
@@ -146,8 +148,8 @@ mesh::FluidMesh remesh_after(const Problem& problem, const mesh::FluidMesh& prev
 // the last attempt; the work of every attempt, failed ones included, goes into sum. Halving is a
 // decision taken from the response, which the DDM follows as it is (not differentiated).
 int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& mesh, StepSettings settings,
-                     const mesh::RemeshOptions& remesh_options, NodeState& nodes, double t, double removal_distance,
-                     const std::atomic<bool>* cancel, RunSummary& sum, Halvings depth = {}) {
+                     const mesh::RemeshOptions& remesh_options, BeamRiderNodes* riders, NodeState& nodes, double t,
+                     double removal_distance, const std::atomic<bool>* cancel, RunSummary& sum, Halvings depth = {}) {
   if (depth.predicted < kMaxHalvings &&
       mesh::collapses_within(mesh, nodes.x, nodes.y, nodes.vx, nodes.vy, settings.dt)) {
     ++sum.deformation_substeps;
@@ -158,6 +160,7 @@ int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& 
       settings.wall_velocity = walls.velocity;
       settings.wall_velocity_sensitivity = walls.sensitivity;
       settings.give_up_inverted = depth.failed < kMaxHalvings;
+      if (riders) settings.riders = riders->step_riders(mesh);
       step.solve(mesh, settings, nodes, cancel);
       step.solve_sensitivities(mesh, settings, nodes);
       step.commit(mesh, settings, nodes);
@@ -178,11 +181,11 @@ int advance_adaptive(const Problem& problem, StepSolver& step, mesh::FluidMesh& 
       const auto t0 = Clock::now();
       // Particles squeezed together in the first half would only come closer in a shorter step.
       sum.removed_particles += mesh::remove_close_particles(mesh, nodes.x, nodes.y, nodes.kind, removal_distance);
-      mesh = remesh_after(problem, mesh, nodes, remesh_options, settings.dt, t + settings.dt);
+      mesh = remesh_after(problem, mesh, nodes, riders, remesh_options, settings.dt, t + settings.dt);
       sum.remesh_seconds += since(t0);
     }
-    iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, nodes, t + half * settings.dt,
-                                  removal_distance, cancel, sum, depth);
+    iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, riders, nodes,
+                                  t + half * settings.dt, removal_distance, cancel, sum, depth);
   }
   return iterations;
 }
@@ -262,6 +265,12 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
   settings.geometric_terms = !options.drop_geometric_terms;
   state.solver = make_step_solver(problem);
   StepSolver& step = *state.solver;
+  // Beam riders (mesh/beam_riders.h) in the quasi-incompressible step with condensed bubbles,
+  // whose systems take their rows to their segments' ends; the other formulations do without.
+  std::optional<BeamRiderNodes> riders;
+  if (state.structure && !problem.beam_segments.empty() && !problem.incompressible &&
+      settings.formulation == StepSettings::Formulation::kCondensedBubble)
+    riders.emplace(problem.beam_segments, nodes);
 
   const int vtk_every = options.vtk_every.value_or(problem.vtk_every);
   std::unique_ptr<VtkSeries> vtk;
@@ -288,14 +297,17 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
     auto t0 = Clock::now();
     place_moving_walls(problem, 0.0, {}, nodes);
     mesh = remesh_nodes(problem, nodes, remesh_options);
-    if (!problem.sliding_walls.empty()) {
+    if (!problem.sliding_walls.empty() || riders) {
+      mesh::RemeshOptions placed = remesh_options;
       slide_walls(problem, mesh, nodes, 0.0);
-      mesh = remesh_nodes(problem, nodes, remesh_options);
+      if (riders) placed.riders = riders->place(mesh, nodes, mesh::level_direction(problem.gx, problem.gy), problem.h);
+      mesh = remesh_nodes(problem, nodes, placed);
     }
     sum.remesh_seconds += since(t0);
     sum.fluid_area_initial = sum.fluid_area_final = fluid_area(mesh, nodes);
-    for (auto& w : beam_contact_warnings(mesh, nodes, problem.beam_segments, problem.gx, problem.gy, problem.h))
-      sum.warnings.push_back(std::move(w));
+    if (!riders)
+      for (auto& w : beam_contact_warnings(mesh, nodes, problem.beam_segments, problem.gx, problem.gy, problem.h))
+        sum.warnings.push_back(std::move(w));
     record(0.0);
     if (vtk) vtk->write(0.0, nodes, mesh, model);
   }
@@ -326,14 +338,16 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
     try {
       if (n > 1) {  // the step-1 mesh is the initial one
         const auto t0 = Clock::now();
-        mesh = remesh_after(problem, mesh, nodes, remesh_options, settings.dt, time_of(n - 1));
+        mesh = remesh_after(problem, mesh, nodes, riders ? &*riders : nullptr, remesh_options, settings.dt,
+                            time_of(n - 1));
         sum.remesh_seconds += since(t0);
       }
       state.water.update(mesh, nodes);
       settings.target_area = state.water.target(sum.fluid_area_initial, mesh, nodes, target_sensitivity);
       settings.target_area_sensitivity = target_sensitivity;
-      const int iterations = advance_adaptive(problem, step, mesh, settings, remesh_options, nodes, time_of(n - 1),
-                                              problem.removal_distance * problem.h, options.cancel, sum);
+      const int iterations =
+          advance_adaptive(problem, step, mesh, settings, remesh_options, riders ? &*riders : nullptr, nodes,
+                           time_of(n - 1), problem.removal_distance * problem.h, options.cancel, sum);
       sum.max_elements = std::max<int>(sum.max_elements, static_cast<int>(mesh.triangles.size()));
       sum.steps = n;
       for (int i; (i = node_outside(nodes, problem.domain)) >= 0;) {

@@ -16,7 +16,8 @@ bool is_free_edge(const Delaunay& tri, FaceHandle f, int e, std::span<const Node
          kind[f->vertex(Delaunay::cw(e))->info()] == NodeKind::Fluid;
 }
 
-FluidMesh extract_fluid_mesh(const Delaunay& tri, std::span<const NodeKind> kind, bool constrained) {
+FluidMesh extract_fluid_mesh(const Delaunay& tri, std::span<const NodeKind> kind, bool constrained,
+                             std::span<const LineRider> riders) {
   const std::size_t n = kind.size();
   FluidMesh mesh;
   mesh.in_mesh.assign(n, 0);
@@ -30,7 +31,7 @@ FluidMesh extract_fluid_mesh(const Delaunay& tri, std::span<const NodeKind> kind
     mesh.triangles.push_back({i0, i1, i2});  // CGAL faces are counter-clockwise
     mesh.in_mesh[i0] = mesh.in_mesh[i1] = mesh.in_mesh[i2] = 1;
   }
-  if (constrained) assign_pressure_sides(tri, kind, mesh);
+  if (constrained) assign_pressure_sides(tri, kind, riders, mesh);
 
   // Both ends of a free edge (see is_free_edge) are on the free surface, wall nodes at the
   // contact line too. A constraint edge is never free: the triangle on its other side was

@@ -57,9 +57,12 @@ void drop_hanging_faces(Delaunay& tri, std::span<const double> x, std::span<cons
 // fluid_mesh.cpp: the kept faces' FluidMesh (triangles, in_mesh, free surface, contact edges,
 // and the pressure sides when constrained), and the free edges that bound them.
 bool is_free_edge(const Delaunay& tri, FaceHandle f, int e, std::span<const NodeKind> kind);
-FluidMesh extract_fluid_mesh(const Delaunay& tri, std::span<const NodeKind> kind, bool constrained);
+FluidMesh extract_fluid_mesh(const Delaunay& tri, std::span<const NodeKind> kind, bool constrained,
+                             std::span<const LineRider> riders);
 
-// pressure_sides.cpp: FluidMesh::sides and corner_side of the kept faces.
-void assign_pressure_sides(const Delaunay& tri, std::span<const NodeKind> kind, FluidMesh& mesh);
+// pressure_sides.cpp: FluidMesh::sides and corner_side of the kept faces (a rider ranked as the
+// far end of its segment, LineRider).
+void assign_pressure_sides(const Delaunay& tri, std::span<const NodeKind> kind, std::span<const LineRider> riders,
+                           FluidMesh& mesh);
 
 }  // namespace pfem::mesh

@@ -1,6 +1,7 @@
 // remesh(): its inputs checked, then its passes in turn (remesh_passes.h).
 #include "engine/mesh/remesher.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -58,6 +59,33 @@ void validate(std::span<const double> x, std::span<const double> y,
                                   std::to_string(n) + ")");
     }
   }
+  for (std::size_t r = 0; r < options.riders.size(); ++r) {
+    const auto [node, a, b] = options.riders[r];
+    if (node < 0 || node >= n || kind[node] == NodeKind::Removed)
+      throw std::invalid_argument("remesh: rider " + std::to_string(r) + " has no node (" + std::to_string(node) + ")");
+    const auto& c = options.constraints;
+    if (std::none_of(c.begin(), c.end(), [&](const auto& s) { return std::minmax(s[0], s[1]) == std::minmax(a, b); }))
+      throw std::invalid_argument("remesh: rider " + std::to_string(r) + " is on (" + std::to_string(a) + ", " +
+                                  std::to_string(b) + "), which is not a constraint");
+  }
+}
+
+// The constraints with every rider's segment split at it.
+std::vector<std::array<std::int32_t, 2>> split_at_riders(const RemeshOptions& options) {
+  std::vector<std::array<std::int32_t, 2>> split;
+  split.reserve(options.constraints.size() + options.riders.size());
+  for (const auto& c : options.constraints) {
+    const auto rider = std::find_if(options.riders.begin(), options.riders.end(), [&](const LineRider& r) {
+      return std::minmax(r.a, r.b) == std::minmax(c[0], c[1]);
+    });
+    if (rider == options.riders.end()) {
+      split.push_back(c);
+    } else {
+      split.push_back({c[0], rider->node});
+      split.push_back({rider->node, c[1]});
+    }
+  }
+  return split;
 }
 
 }  // namespace
@@ -66,7 +94,8 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
                  std::span<const NodeKind> kind, const RemeshOptions& options) {
   validate(x, y, kind, options);
   Delaunay tri;
-  const bool constrained = triangulate_nodes(x, y, kind, options.constraints, tri);
+  const bool constrained = options.riders.empty() ? triangulate_nodes(x, y, kind, options.constraints, tri)
+                                                   : triangulate_nodes(x, y, kind, split_at_riders(options), tri);
   // The faces that are water: those the alpha test keeps, the pockets and voids it leaves
   // closed in, less those hanging above the waterline at a wall.
   const PreviousMesh previous(x.size(), options);
@@ -74,7 +103,9 @@ FluidMesh remesh(std::span<const double> x, std::span<const double> y,
   keep_wall_pockets(tri, kind, options);
   keep_voids_at_beams(tri, kind, options, previous);
   drop_hanging_faces(tri, x, y, kind, options);
-  return extract_fluid_mesh(tri, kind, constrained);
+  FluidMesh mesh = extract_fluid_mesh(tri, kind, constrained, options.riders);
+  mesh.riders.assign(options.riders.begin(), options.riders.end());
+  return mesh;
 }
 
 }  // namespace pfem::mesh

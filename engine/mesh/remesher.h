@@ -19,6 +19,15 @@ enum class NodeKind : std::uint8_t { Fluid = 0, Wall = 1, Structure = 2, Removed
 // most this many (the sides past the last share its pressure).
 inline constexpr int kMaxPressureSides = 4;
 
+// A node placed on a wall or beam segment (a, b) of RemeshOptions::constraints, between its ends
+// (a beam rider: where the free surface meets a beam between two of its nodes, beam_riders.h).
+// The segment is then two, (a, node) and (node, b); around a and b the node stands for the far
+// end (b, a) when their pressure sides are ranked, so that a side keeps its rank whether or not a
+// rider splits the segment.
+struct LineRider {
+  std::int32_t node = -1, a = -1, b = -1;
+};
+
 struct RemeshOptions {
   double h = 0.0;      // particle spacing [m], > 0
   double alpha = 1.2;  // keep a triangle when its circumradius <= alpha * h
@@ -40,6 +49,10 @@ struct RemeshOptions {
   //   the interior of both is left out (only parts ending at nodes lying on it before the
   //   crossing stay); no node is ever invented, and no error is raised.
   std::vector<std::array<std::int32_t, 2>> constraints{};
+  // Nodes splitting constraint segments (LineRider), at most one a segment. A rider whose node
+  // is out of range or Removed, or whose (a, b) is not a constraint (in either order), throws
+  // std::invalid_argument.
+  std::span<const LineRider> riders{};
   // Per node, 1 for a node on the boundary of the previous step's mesh: on its free surface
   // (FluidMesh::free_surface) or a particle in no triangle of it; nodes past its end count as
   // 0. Empty (the default): no previous mesh. A triangle whose three nodes are all flagged
@@ -76,6 +89,8 @@ struct FluidMesh {
   // Free edges from a fluid particle to a wall or structure node (particle, node): where the free
   // surface meets a wall (see contact_line.h) or a beam, in the order of the triangulation's faces.
   std::vector<std::array<std::int32_t, 2>> contact_edges;
+  // The riders it was made with (RemeshOptions::riders).
+  std::vector<LineRider> riders;
   // The sides of the wall and beam lines (the constraints) at a node: its constrained edges cut
   // the plane around it into sectors, and the water in each sector has its own pressure there
   // (a plate with water on both sides carries the difference; one pressure for both would

@@ -59,8 +59,12 @@ void solve_condensed(const mesh::FluidMesh& mesh, const StepNumbering& num,
       z.col(c).segment<2>(2 * e) = ze;
       const auto& tri = mesh.triangles[e];
       for (int k = 0; k < 3; ++k) {
-        if (const int dx = num.vx[tri[k]]; dx >= 0) rhs(dx, c) -= b.a_cb.row(2 * k).dot(ze);
-        if (const int dy = num.vy[tri[k]]; dy >= 0) rhs(dy, c) -= b.a_cb.row(2 * k + 1).dot(ze);
+        for (int d = 0; d < 2; ++d) {
+          const VelocityTerms t = num.velocity_terms(tri[k], d);
+          const double value = b.a_cb.row(2 * k + d).dot(ze);
+          for (int j = 0; j < 2; ++j)
+            if (t.u[j] >= 0) rhs(t.u[j], c) -= t.w[j] * value;
+        }
         rhs(num.node_velocities + num.corner_p[e][k], c) += b.gc_b.col(k).dot(ze);
       }
     }
@@ -77,9 +81,12 @@ void solve_condensed(const mesh::FluidMesh& mesh, const StepNumbering& num,
       Eigen::Matrix<double, 6, 1> dvc;
       Eigen::Vector3d dpe;
       for (int k = 0; k < 3; ++k) {
-        const int dx = num.vx[tri[k]], dy = num.vy[tri[k]];
-        dvc(2 * k) = dx >= 0 ? x(dx, c) : 0.0;
-        dvc(2 * k + 1) = dy >= 0 ? x(dy, c) : 0.0;
+        for (int d = 0; d < 2; ++d) {
+          const VelocityTerms t = num.velocity_terms(tri[k], d);
+          dvc(2 * k + d) = 0.0;
+          for (int j = 0; j < 2; ++j)
+            if (t.u[j] >= 0) dvc(2 * k + d) += t.w[j] * x(t.u[j], c);
+        }
         dpe(k) = x(num.node_velocities + num.corner_p[e][k], c);
       }
       dv.col(c).segment<2>(num.bubble(e)) = z.col(c).segment<2>(2 * e) + b.inv_bb * (b.g_b * dpe - b.a_bc * dvc);

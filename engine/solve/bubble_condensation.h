@@ -5,6 +5,7 @@
 // right-hand side's bubble rows are condensed in before the solve and the bubbles recovered
 // after it.
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 #include <span>
 
@@ -37,6 +38,25 @@ void element_jacobian(const fluid::MiniMatrices& m, double dt, const fluid::Geom
 using CondensedElement = Eigen::Matrix<double, 9, 9>;
 void condense_element(const fluid::MiniMatrices& m, double dt, const fluid::GeometricDerivatives* geometric,
                       BubbleCondensation& b, CondensedElement& k);
+
+// The entries of a triangle's condensed element k that a beam rider's velocity takes part in
+// (StepRider), in the unknowns of its segment's ends: put(row, col, value) for each, both orders
+// (the entries between the triangle's own unknowns are the callers'). A symmetric store adds
+// those with row >= col: an unordered pair comes once, and a diagonal entry whole.
+template <class Put>
+void put_rider_entries(const StepNumbering& num, const std::array<std::int32_t, 3>& tri, int e,
+                       const CondensedElement& k, Put&& put) {
+  const std::array<VelocityTerms, 9> t = num.condensed_terms(tri, e);
+  std::array<bool, 9> rider{};
+  for (int c = 0; c < 6; ++c) rider[c] = num.is_rider(tri[c / 2]);
+  for (int r = 0; r < 9; ++r)
+    for (int c = 0; c < 9; ++c) {
+      if (!rider[r] && !rider[c]) continue;
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j)
+          if (t[r].u[i] >= 0 && t[c].u[j] >= 0) put(t[r].u[i], t[c].u[j], t[r].w[i] * t[c].w[j] * k(r, c));
+    }
+}
 
 // Solves the condensed system held by `solve` (in the condensed unknowns: node velocities, then
 // pressures) for right-hand sides in the full unknowns (velocity rows rv, bubbles included, and

@@ -35,8 +35,14 @@ void CondensedBubbleSystem::analyze() {
     if (const int d = num.structure[j]; d >= 0) node_of[d] = s.structure.node[j / 3], structure_unknowns.push_back(d);
   std::vector<std::array<int, 2>> couplings;
   couplings.reserve(3 * mesh.triangles.size());
-  for (const auto& tri : mesh.triangles) couplings.push_back({tri[0], tri[1]}), couplings.push_back({tri[1], tri[2]}),
-                                         couplings.push_back({tri[2], tri[0]});
+  for (const auto& tri : mesh.triangles) {
+    couplings.push_back({tri[0], tri[1]}), couplings.push_back({tri[1], tri[2]}), couplings.push_back({tri[2], tri[0]});
+    // A rider's velocity rows and columns are its segment ends': they couple to its triangles.
+    for (const std::int32_t i : tri)
+      if (num.is_rider(i))
+        for (const int end : {num.riders[num.rider[i]].a, num.riders[num.rider[i]].b})
+          for (const std::int32_t corner : tri) couplings.push_back({end, corner});
+  }
   if (const auto* model = s.structure.model)
     for (int e = 0; e < model->num_elements(); ++e) {
       const auto [i, j] = model->element(e).nodes();
@@ -97,6 +103,10 @@ void CondensedBubbleSystem::factorize(const StepElements& elements, const Eigen:
           if (u[c] >= 0) lx[row + layout_.slot[u[c]] * b.col_step] += k(r, c);
       }
     }
+    if (num.has_rider(mesh_->triangles[e]))
+      put_rider_entries(num, mesh_->triangles[e], e, k, [&](int row, int col, double value) {
+        if (row >= col) lx[factor_.block(row, col).base] += value;
+      });
   }
   for (int q = 0; q < num.pressures; ++q) lx[layout_.pressure_diagonal[q]] -= mp[q] / s_->dt;
   factor_structure_ = structure_->tangent_lower();

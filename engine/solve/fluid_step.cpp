@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -41,7 +42,9 @@ void UnifiedStep::solve(const mesh::FluidMesh& mesh, const StepSettings& s, cons
                         const std::atomic<bool>* cancel) {
   report_ = StepReport{};
   if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
-  num_ = number_unknowns(mesh, nodes, s.slip, s.structure.model, s.structure.node);
+  if (!s.riders.empty() && s.formulation != StepSettings::Formulation::kCondensedBubble)
+    throw std::logic_error("beam riders need the condensed-bubble formulation");
+  num_ = number_unknowns(mesh, nodes, s.slip, s.structure.model, s.structure.node, s.riders);
   report_.velocity_unknowns = num_.velocities;
   report_.pressure_unknowns = num_.pressures;
   initial_iterate(mesh, s, nodes);
@@ -170,7 +173,7 @@ void UnifiedStep::commit(const mesh::FluidMesh& mesh, const StepSettings& s, Nod
   // The converged state to the nodes; particles outside the mesh fall freely.
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const int dx = num_.vx[i], dy = num_.vy[i];
-    if (dx < 0 && dy < 0) continue;
+    if (dx < 0 && dy < 0 && !num_.is_rider(static_cast<int>(i))) continue;
     // A particle that hits a wall is taken out where it was, as one closer to a wall than the
     // removal distance is between steps (stopped there instead, the jet behind it collides with it).
     if (hits_wall_[i]) {

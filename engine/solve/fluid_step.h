@@ -89,6 +89,9 @@ struct StepSettings {
   std::span<const double> wall_velocity;
   std::span<const double> wall_velocity_sensitivity;
   StructureCoupling structure;  // no structure when model is null
+  // Beam riders (engine/mesh/beam_riders.h; the condensed-bubble formulation only), of nodes the
+  // structure does not list.
+  std::vector<StepRider> riders;
   // DDM (theory §5): one seed per parameter (how it moves the fluid constants; the structure's
   // seeds live in its model); empty for no sensitivities. Without geometric terms H and T are
   // dropped, the approximation of the paper's baseline, kept only to show what it costs.

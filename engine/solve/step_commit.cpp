@@ -38,13 +38,24 @@ void commit_velocity_sensitivities(const StepNumbering& num, const Eigen::Matrix
   const auto num_params = static_cast<std::size_t>(dv.cols());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const int unknown[2] = {num.vx[i], num.vy[i]};
-    if ((unknown[0] < 0 && unknown[1] < 0) || hits_wall[i]) continue;
+    const bool rider = num.is_rider(static_cast<int>(i));
+    if ((unknown[0] < 0 && unknown[1] < 0 && !rider) || hits_wall[i]) continue;
     for (std::size_t k = 0; k < num_params; ++k) {
       double* d = nodes.sensitivity(i, static_cast<int>(k));
       for (int c = 0; c < 2; ++c) {
-        const double wall =
-            wall_velocity_sensitivity.empty() ? 0.0 : wall_velocity_sensitivity[(i * num_params + k) * 2 + c];
-        d[NodeState::kDvx + c] = unknown[c] >= 0 ? dv(unknown[c], static_cast<Eigen::Index>(k)) : wall;
+        if (rider) {
+          // (1 - s) dv_a + s dv_b + ds (v_b - v_a), the ends' velocities committed
+          const StepRider& r = num.riders[num.rider[i]];
+          const VelocityTerms t = num.velocity_terms(static_cast<int>(i), c);
+          const std::vector<double>& v = c == 0 ? nodes.vx : nodes.vy;
+          d[NodeState::kDvx + c] = r.ds[k] * (v[r.b] - v[r.a]);
+          for (int j = 0; j < 2; ++j)
+            if (t.u[j] >= 0) d[NodeState::kDvx + c] += t.w[j] * dv(t.u[j], static_cast<Eigen::Index>(k));
+        } else {
+          const double wall =
+              wall_velocity_sensitivity.empty() ? 0.0 : wall_velocity_sensitivity[(i * num_params + k) * 2 + c];
+          d[NodeState::kDvx + c] = unknown[c] >= 0 ? dv(unknown[c], static_cast<Eigen::Index>(k)) : wall;
+        }
         d[NodeState::kDx + c] += dt * d[NodeState::kDvx + c];
       }
     }

@@ -78,11 +78,15 @@ fluid::ElementState StepElements::state(int e, const Eigen::VectorXd& v, const E
 double StepElements::wall_velocity(int i, int c) const {
   return s_->wall_velocity.empty() ? 0.0 : s_->wall_velocity[2 * static_cast<std::size_t>(i) + c];
 }
-double StepElements::velocity_x(int i, const Eigen::VectorXd& v) const {
-  return num_->vx[i] >= 0 ? v[num_->vx[i]] : wall_velocity(i, 0);
-}
-double StepElements::velocity_y(int i, const Eigen::VectorXd& v) const {
-  return num_->vy[i] >= 0 ? v[num_->vy[i]] : wall_velocity(i, 1);
+double StepElements::velocity(int i, int c, const Eigen::VectorXd& v) const {
+  const int own = c == 0 ? num_->vx[i] : num_->vy[i];
+  if (own >= 0) return v[own];
+  if (!num_->is_rider(i)) return wall_velocity(i, c);
+  const VelocityTerms t = num_->velocity_terms(i, c);
+  double sum = 0.0;
+  for (int j = 0; j < 2; ++j)
+    if (t.u[j] >= 0) sum += t.w[j] * v[t.u[j]];
+  return sum;
 }
 
 void StepElements::assemble(StepResidual& r) const {
@@ -96,9 +100,12 @@ void StepElements::assemble(StepResidual& r) const {
     const auto& re = element_residuals_[e];
     const auto& tri = mesh_->triangles[e];
     for (int a = 0; a < 3; ++a) {
-      const int i = tri[a], dx = num.vx[i], dy = num.vy[i], q = num.corner_p[e][a];
-      if (dx >= 0) r.rv[dx] += re.rv(2 * a);
-      if (dy >= 0) r.rv[dy] += re.rv(2 * a + 1);
+      const int i = tri[a], q = num.corner_p[e][a];
+      for (int c = 0; c < 2; ++c) {
+        const VelocityTerms t = num.velocity_terms(i, c);
+        for (int j = 0; j < 2; ++j)
+          if (t.u[j] >= 0) r.rv[t.u[j]] += t.w[j] * re.rv(2 * a + c);
+      }
       r.rp[q] += re.rp(a), r.rp_abs[q] += re.rp_abs(a), r.mp[q] += re.mp;
       if (volume_.dilatation != 0.0) {
         const double source = volume_.corner_source(e);

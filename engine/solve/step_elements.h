@@ -41,9 +41,11 @@ class StepElements {
   bool any_inverted() const;
 
   fluid::ElementState state(int e, const Eigen::VectorXd& v, const Eigen::VectorXd& p) const;
-  // Node i's x or y velocity at the iterate v: its unknown's, else a moving wall's or 0.
-  double velocity_x(int i, const Eigen::VectorXd& v) const;
-  double velocity_y(int i, const Eigen::VectorXd& v) const;
+  // Node i's velocity component c (0: x, 1: y) at the iterate v: its unknown's, a beam rider's
+  // from its segment's ends, else a moving wall's or 0.
+  double velocity(int i, int c, const Eigen::VectorXd& v) const;
+  double velocity_x(int i, const Eigen::VectorXd& v) const { return velocity(i, 0, v); }
+  double velocity_y(int i, const Eigen::VectorXd& v) const { return velocity(i, 1, v); }
 
   const std::vector<fluid::TriangleGeometry>& geometries() const { return geometries_; }
   const std::vector<fluid::DirectResidual>& residuals() const { return element_residuals_; }

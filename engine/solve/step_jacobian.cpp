@@ -72,6 +72,11 @@ void StepJacobian::factorize(const ConvergedStep& c) {
             if (u[col] >= 0) values[row + slot[u[col]] * blk.col_step] += k(r, col);
         }
       }
+    if (num.has_rider(c.mesh.triangles[e]))
+      put_rider_entries(num, c.mesh.triangles[e], e, k, [this](int row, int col, double value) {
+        const SupernodalLu::Block blk = lu_.block(row, col);
+        lu_.values(blk.upper)[blk.base] += value;
+      });
   }
   const std::vector<long>& pressure_diagonal = c.condensed.layout().pressure_diagonal;
   for (int q = 0; q < num.pressures; ++q) {
@@ -96,6 +101,9 @@ Eigen::VectorXd StepJacobian::product(const ConvergedStep& c, const Eigen::Vecto
     const Eigen::Matrix<double, 9, 1> ye = elements_[e] * xe;
     for (int r = 0; r < 9; ++r)
       if (u[r] >= 0) y[u[r]] += ye(r);
+    if (num.has_rider(c.mesh.triangles[e]))
+      put_rider_entries(num, c.mesh.triangles[e], static_cast<int>(e), elements_[e],
+                        [&](int row, int col, double value) { y[row] += value * x[col]; });
   }
   for (int q = 0; q < num.pressures; ++q) {
     const int u = num.node_velocities + q;

@@ -6,7 +6,8 @@ StepNumbering number_unknowns(const mesh::FluidMesh &mesh,
                               const NodeState &nodes,
                               std::span<const std::uint8_t> slip,
                               const structure::StructureModel *model,
-                              std::span<const int> structure_node) {
+                              std::span<const int> structure_node,
+                              std::span<const StepRider> riders) {
   StepNumbering u;
   const std::size_t n = nodes.size();
   u.vx.assign(n, -1);
@@ -61,7 +62,29 @@ StepNumbering number_unknowns(const mesh::FluidMesh &mesh,
   }
   u.velocities =
       u.node_velocities + 2 * static_cast<int>(mesh.triangles.size());
+  if (!riders.empty()) {
+    u.rider.assign(n, -1);
+    u.riders.assign(riders.begin(), riders.end());
+    for (std::size_t r = 0; r < riders.size(); ++r)
+      u.rider[riders[r].node] = static_cast<int>(r);
+  }
   return u;
+}
+
+bool StepNumbering::has_rider(const std::array<std::int32_t, 3> &tri) const {
+  return is_rider(tri[0]) || is_rider(tri[1]) || is_rider(tri[2]);
+}
+
+std::array<VelocityTerms, 9>
+StepNumbering::condensed_terms(const std::array<std::int32_t, 3> &tri,
+                               int e) const {
+  std::array<VelocityTerms, 9> t;
+  for (int c = 0; c < 3; ++c) {
+    t[2 * c] = velocity_terms(tri[c], 0);
+    t[2 * c + 1] = velocity_terms(tri[c], 1);
+    t[6 + c] = {{node_velocities + corner_p[e][c], -1}, {1.0, 0.0}};
+  }
+  return t;
 }
 
 std::array<int, 8>

@@ -3,7 +3,8 @@
 // sit among them (engine/solve/fluid_step.h). Velocity unknowns come first: the
 // free nodes' x and y, a slip wall node's free component, the structure's free
 // dofs (a structure node's x and y velocity unknowns are the fluid's at that
-// node, its rotation rate its own), then two bubble unknowns per triangle;
+// node, its rotation rate its own), then two bubble unknowns per triangle (a
+// beam rider has none: its velocity is its beam segment's, StepRider);
 // pressures are numbered apart, one at every mesh node (free surface included) and one per wet
 // side at a node of wall or beam lines (mesh::FluidMesh::sides), node by node.
 #include <Eigen/Core>
@@ -18,6 +19,24 @@
 
 namespace pfem {
 
+// A beam rider (mesh::LineRider, engine/mesh/beam_riders.h): a node on the beam
+// segment from node a to node b, at a + s (b - a), whose velocity is the
+// segment's there, (1 - s) v_a + s v_b. It has no velocity unknowns: its
+// velocity rows go to a's and b's by the same weights (the water's force on it
+// is the beam's), and its sensitivity follows s's (s is the level of a particle,
+// set when the step began).
+struct StepRider {
+  int node = -1, a = -1, b = -1;
+  double s = 0.0;
+  std::vector<double> ds; // per parameter
+};
+
+// The unknowns a velocity component is made of and their weights (-1: none).
+struct VelocityTerms {
+  std::array<int, 2> u{-1, -1};
+  std::array<double, 2> w{0.0, 0.0};
+};
+
 struct StepNumbering {
   std::vector<int> vx,
       vy; // per node: its x, y velocity unknown or -1 (fixed, not in the mesh)
@@ -26,10 +45,31 @@ struct StepNumbering {
   std::vector<std::uint8_t> pressure_side;  // ... and the side of it
   std::vector<int>
       structure; // per structure dof (3 per structure node): its unknown or -1
+  std::vector<int> rider;        // per node: its index in riders, or -1
+  std::vector<StepRider> riders; // the step's beam riders
   int node_velocities =
       0;              // velocity unknowns of the nodes (bubbles follow them)
   int velocities = 0; // ... and the bubbles'
   int pressures = 0;
+
+  bool is_rider(int i) const { return !rider.empty() && rider[i] >= 0; }
+  // Node i's velocity component c (0: x, 1: y) in the unknowns: its own (weight
+  // 1), a rider's segment ends' (1 - s and s; -1 for a supported end, which
+  // does not move); none for a node whose velocity is prescribed.
+  VelocityTerms velocity_terms(int i, int c) const {
+    const std::vector<int> &own = c == 0 ? vx : vy;
+    if (own[i] >= 0 || !is_rider(i))
+      return {{own[i], -1}, {own[i] >= 0 ? 1.0 : 0.0, 0.0}};
+    const StepRider &r = riders[rider[i]];
+    return {{own[r.a], own[r.b]}, {1.0 - r.s, r.s}};
+  }
+  // Whether a corner of the triangle is a rider (its velocity rows and columns
+  // are then its ends', condensed_terms).
+  bool has_rider(const std::array<std::int32_t, 3> &tri) const;
+  // condensed_unknowns with each velocity as its terms (a pressure: its unknown,
+  // weight 1).
+  std::array<VelocityTerms, 9>
+  condensed_terms(const std::array<std::int32_t, 3> &tri, int e) const;
 
   // The first of triangle e's two bubble unknowns.
   int bubble(int e) const { return node_velocities + 2 * e; }
@@ -46,12 +86,13 @@ struct StepNumbering {
 
 // slip: per node (empty: none), kSlipX or kSlipY for a slip wall's node;
 // structure_node: the NodeState index of each structure node (model null: no
-// structure).
+// structure); riders: the beam riders (structure nodes not in structure_node).
 StepNumbering number_unknowns(const mesh::FluidMesh &mesh,
                               const NodeState &nodes,
                               std::span<const std::uint8_t> slip,
                               const structure::StructureModel *model,
-                              std::span<const int> structure_node);
+                              std::span<const int> structure_node,
+                              std::span<const StepRider> riders = {});
 
 // The state at t_n in a step's unknowns: each node's velocities into its
 // velocity unknowns of v (the rest of v untouched), and the pressure of each

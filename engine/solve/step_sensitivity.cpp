@@ -1,6 +1,7 @@
 #include "engine/solve/step_sensitivity.h"
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -40,6 +41,29 @@ LinearOperator solve_by(const Factorisation& f) {
     f.solve(y);
     return y;
   };
+}
+// A beam rider's velocity rows go to its segment's ends by (1 - s) and s, so their shares move
+// with s: -r ds to a's rows and +r ds to b's, r the rider's own rows at the converged iterate (the
+// water's force on it).
+void add_rider_shares(const ConvergedStep& c, Eigen::MatrixXd& rv) {
+  const StepNumbering& num = c.num;
+  if (num.riders.empty()) return;
+  std::vector<std::array<double, 2>> force(num.riders.size(), {0.0, 0.0});
+  const auto& residuals = c.elements.residuals();
+  for (std::size_t e = 0; e < c.mesh.triangles.size(); ++e)
+    for (int a = 0; a < 3; ++a)
+      if (const int i = c.mesh.triangles[e][a]; num.is_rider(i))
+        for (int d = 0; d < 2; ++d) force[num.rider[i]][d] += residuals[e].rv(2 * a + d);
+  for (std::size_t r = 0; r < num.riders.size(); ++r) {
+    const StepRider& rider = num.riders[r];
+    for (int d = 0; d < 2; ++d) {
+      const std::vector<int>& of = d == 0 ? num.vx : num.vy;
+      for (long k = 0; k < rv.cols(); ++k) {
+        if (of[rider.a] >= 0) rv(of[rider.a], k) -= rider.ds[k] * force[r][d];
+        if (of[rider.b] >= 0) rv(of[rider.b], k) += rider.ds[k] * force[r][d];
+      }
+    }
+  }
 }
 }  // namespace
 
@@ -89,11 +113,18 @@ void StepSensitivity::right_hand_sides(const ConvergedStep& c, const NodeState& 
         sv += cd.rv;
         sp += cd.rp;
       }
-      // A moving wall's corner: its prescribed velocity sensitivity w enters as -J(:, corner) w.
-      for (int col = 0; !s.wall_velocity_sensitivity.empty() && col < 6; ++col) {
+      // A moving wall's corner: its prescribed velocity sensitivity w enters as -J(:, corner) w;
+      // a rider's velocity moves with its s at fixed unknowns: w = ds (v_b - v_a).
+      for (int col = 0; (!s.wall_velocity_sensitivity.empty() || !num.riders.empty()) && col < 6; ++col) {
         const int i = tri[col / 2];
         if ((col % 2 == 0 ? num.vx[i] : num.vy[i]) >= 0) continue;
-        const double w = s.wall_velocity_sensitivity[(static_cast<std::size_t>(i) * num_params + k) * 2 + col % 2];
+        double w = 0.0;
+        if (num.is_rider(i)) {
+          const StepRider& r = num.riders[num.rider[i]];
+          w = r.ds[k] * (c.elements.velocity(r.b, col % 2, c.v) - c.elements.velocity(r.a, col % 2, c.v));
+        } else if (!s.wall_velocity_sensitivity.empty()) {
+          w = s.wall_velocity_sensitivity[(static_cast<std::size_t>(i) * num_params + k) * 2 + col % 2];
+        }
         if (w == 0.0) continue;
         if (!have_jacobian) element_jacobian(m, s.dt, &gd, a_e, q_e), have_jacobian = true;
         sv -= a_e.col(col) * w;
@@ -101,14 +132,17 @@ void StepSensitivity::right_hand_sides(const ConvergedStep& c, const NodeState& 
       }
       if (volume.dilatation != 0.0) sp.array() += dsource(e, k);
       for (int a = 0; a < 3; ++a) {
-        const int i = tri[a], dx = num.vx[i], dy = num.vy[i];
-        if (dx >= 0) rv(dx, k) += sv(2 * a);
-        if (dy >= 0) rv(dy, k) += sv(2 * a + 1);
+        for (int d = 0; d < 2; ++d) {
+          const VelocityTerms t = num.velocity_terms(tri[a], d);
+          for (int j = 0; j < 2; ++j)
+            if (t.u[j] >= 0) rv(t.u[j], k) += t.w[j] * sv(2 * a + d);
+        }
         rp(num.corner_p[e][a], k) += sp(a);
       }
       rv(bubble, k) += sv(6), rv(bubble + 1, k) += sv(7);
     }
   }
+  add_rider_shares(c, rv);
   for (int k = 0; s.structure.model && k < num_params; ++k) {
     const Eigen::VectorXd r = c.structure.sensitivity_rhs(nodes, k, c.v);
     for (std::size_t j = 0; j < num.structure.size(); ++j)
