@@ -232,12 +232,20 @@ std::string water_between_two_nodes(int elements, const std::vector<std::pair<st
 
 // A beam rider (engine/mesh/beam_riders.h) ends the surface at the water's level between the two
 // nodes: water's viscosity, 1 s, and the water stays at rest with the hydrostatic load on the
-// beam. (Ended at the node 0.87 mm below instead, the surface could not be level: such water
-// against a stiff plate of 7.1 mm elements, h = 5 mm, moved at 0.11 m/s within 1 s.)
-TEST(FsiStillWater, ASurfaceBetweenTwoBeamNodesStaysAtRest) {
+// beam; with the level 0.4 of an element above a node (0.87 mm) and 0.05 of one (0.11 mm: the
+// plate's tip raised to 23 elements of 0.04 / 18.05 m). (Ended at the node below instead, the
+// surface could not be level: such water moved at 0.086 m/s within 1 s, and at 1.9e-3 m/s 0.05 of
+// an element above the node.)
+class BeamRiderLevel : public ::testing::TestWithParam<double> {};
+
+TEST_P(BeamRiderLevel, ASurfaceBetweenTwoBeamNodesStaysAtRest) {
+  const double tip = GetParam();
+  char tip_node[64];
+  std::snprintf(tip_node, sizeof tip_node, R"({"name": "tip", "x": 0.05, "y": %.17g})", tip);
   const std::string model = water_between_two_nodes(
       23, {{R"("mu": 0.01)", R"("mu": 0.001)"},
            {R"("e": 1e7)", R"("e": 1e9)"},
+           {R"({"name": "tip", "x": 0.05, "y": 0.05})", tip_node},
            {R"("rho": 2500.0}])", R"("rho": 2500.0}], "rayleigh": {"a0": 0.0, "a1": 0.002}, "self_weight": false)"},
            {R"("t_end": 0.3})", R"("t_end": 1.0, "record_every": 100})"},
            {R"("recorders": [)", R"("recorders": [{"name": "speed", "quantity": "max_speed"}, )"}});
@@ -254,6 +262,8 @@ TEST(FsiStillWater, ASurfaceBetweenTwoBeamNodesStaysAtRest) {
   EXPECT_NEAR(fx, load, 1e-3 * load);
   EXPECT_LT(r.summary.fluid_area_max_drift, 1e-6);
 }
+
+INSTANTIATE_TEST_SUITE_P(FsiStillWater, BeamRiderLevel, ::testing::Values(0.05, 23 * 0.04 / 18.05));
 
 // The incompressible formulation has no riders: a run warns where the surface meets a beam
 // between two nodes, with the distance from the node that ends the surface to the level

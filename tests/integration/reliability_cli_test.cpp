@@ -148,13 +148,13 @@ TEST(ReliabilityCli, ModelLimitStateConvergesWithDdmAndFdm) {
     // Every evaluation of the iHLRF carries a gradient: DDM one run each, FDM 2P + 1 = 5.
     EXPECT_EQ(runs[i], (i == 0 ? 1 : 5) * static_cast<long long>(number(r, "evaluations")));
   }
-  EXPECT_NEAR(betas[0], 1.6325, 1e-3);  // the README's run; FDM gradients must agree
+  EXPECT_NEAR(betas[0], 1.66976, 1e-3);  // the README's run; FDM gradients must agree
   EXPECT_NEAR(betas[1], betas[0], 1e-5);
 }
 
 // Subset simulation and SORM on the model limit state, in-process, at concurrency 1 and 2: the
 // same numbers (samples keyed by index, chains in lock step), subset simulation within 3 of
-// its c.o.v. of SORM's Hohenbichler-Rackwitz pf (0.0500 with beam riders, the water's surface
+// its c.o.v. of SORM's Hohenbichler-Rackwitz pf (0.0462 with beam riders, the water's surface
 // meeting the cantilever between two nodes; 0.0427 before, with the volume correction; 0.0401 on
 // the engine of commit 135902c; 0.0663 before, with p = 0 imposed on the free surface), and FDM
 // gradients (2P + 1 concurrent runs).
@@ -171,7 +171,7 @@ TEST(ReliabilityCli, ModelLimitStateSubsetSimulationAtAnyConcurrency) {
     const Struct& sus = object(r, "subset_simulation");
     EXPECT_TRUE(sus.fields().at("converged").bool_value());
     const double hr = number(object(object(r, "sorm"), "hohenbichler_rackwitz"), "pf");
-    EXPECT_NEAR(hr, 0.0500, 0.0005);
+    EXPECT_NEAR(hr, 0.0462, 0.0005);
     EXPECT_NEAR(number(sus, "pf"), hr, 3 * number(sus, "cov") * hr);
     EXPECT_EQ(sus.fields().at("levels").list_value().values_size(), 2);  // pf ~ 0.04: one level
     // The subset_simulation block as written, every number with 17 digits.

@@ -137,8 +137,8 @@ TEST(BeamRiders, ARiderGoesOnTheSegmentLevelWithTheSurfaceAndEndsIt) {
 }
 
 TEST(BeamRiders, ASurfaceNearANodeTakesNoRider) {
-  // 0.05 of a spacing above the node at 4 spacings: within kRiderMargin, the node covers it.
-  Scene s = scene(4.05 * kSpacing);
+  // 0.005 of a spacing above the node at 4 spacings: within kRiderMargin, the node covers it.
+  Scene s = scene(4.005 * kSpacing);
   const FluidMesh mesh = remesh(s.x, s.y, s.kind, options(s));
   ASSERT_FALSE(mesh.contact_edges.empty());
   EXPECT_TRUE(place_riders(mesh, s.x, s.y, s.segments, s.segments_of, s.first_rider, kLevel, kH).empty());
