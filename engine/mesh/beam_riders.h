@@ -7,7 +7,7 @@
 // 1 s). Walls slide a node to the contact (contact_line.h); a beam gets a rider instead: a node
 // on the segment at the beam's point level with the contact particle (square to gravity), which
 // splits the segment for the remeshing (LineRider) and moves with the beam between the
-// segment's ends (engine/solve/step_structure.h). Each segment has at most one.
+// segment's ends (StepRider, engine/solve/step_numbering.h). Each segment has at most one.
 #include <array>
 #include <cstdint>
 #include <span>

@@ -66,11 +66,12 @@ TEST(ReliabilityExamples, ObstacleFormWithDdmConverges) {
 // within the example's tolerance, 5 % of g at the means (0.70 mm).
 TEST(ReliabilityExamples, WaveFlumeFormWithDdmConverges) {
   const Form f = converged_form("wave-flume.json", 0.05 * 7.0e-4);
-  // 1.788 in 4 simulations with edges along the free surface split (1.806 to about 0.07 before, at
-  // commit 1fc26a2); at h = 10 mm 1.881 with them, where before g was dominated by the alpha test's
+  // 1.972 in 3 simulations with beam riders (the plate's contact line level with the water);
+  // 1.788 in 4 with edges along the free surface split (1.806 to about 0.07 before, at commit
+  // 1fc26a2); at h = 10 mm 1.881 with them, where before g was dominated by the alpha test's
   // events at the plate and had no one design point (1.548 before 298fd8c; README, Reliability of
   // a PFEM model). A band for the engine's remeshing rules, as above.
-  EXPECT_NEAR(f.r.form.beta, 1.80, 0.15);
+  EXPECT_NEAR(f.r.form.beta, 1.97, 0.15);
   // Failure needs bigger waves and a softer plate.
   EXPECT_GT(f.r.form.x(0), 0.02);
   EXPECT_LT(f.r.form.x(1), 5e7);
