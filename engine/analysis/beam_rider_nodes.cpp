@@ -22,9 +22,11 @@ std::span<const mesh::LineRider> BeamRiderNodes::place(const mesh::FluidMesh& pr
   for (std::size_t j = 0; j < segments_.size(); ++j) nodes.kind[first_ + j] = mesh::NodeKind::Removed;
   placed_.clear();
   const int P = nodes.num_params;
-  for (const auto& [j, particle, s] : mesh::place_riders(previous, nodes.x, nodes.y, segments_, segments_of_, first_,
-                                                        level, h)) {
-    const auto [a, b] = segments_[j];
+  for (const mesh::RiderPlace& place : mesh::place_riders(previous, nodes.x, nodes.y, segments_, segments_of_, first_,
+                                                          level, h)) {
+    const int j = place.segment;
+    const std::int32_t particle = place.particle, a = segments_[j][0], b = segments_[j][1];
+    const double s = place.s;
     const int c = first_ + j;
     placed_.push_back({c, a, b});
     s_[j] = s;

@@ -60,13 +60,14 @@ void validate(std::span<const double> x, std::span<const double> y,
     }
   }
   for (std::size_t r = 0; r < options.riders.size(); ++r) {
-    const auto [node, a, b] = options.riders[r];
-    if (node < 0 || node >= n || kind[node] == NodeKind::Removed)
-      throw std::invalid_argument("remesh: rider " + std::to_string(r) + " has no node (" + std::to_string(node) + ")");
+    const LineRider& rider = options.riders[r];
+    if (rider.node < 0 || rider.node >= n || kind[rider.node] == NodeKind::Removed)
+      throw std::invalid_argument("remesh: rider " + std::to_string(r) + " has no node (" + std::to_string(rider.node) + ")");
     const auto& c = options.constraints;
-    if (std::none_of(c.begin(), c.end(), [&](const auto& s) { return std::minmax(s[0], s[1]) == std::minmax(a, b); }))
-      throw std::invalid_argument("remesh: rider " + std::to_string(r) + " is on (" + std::to_string(a) + ", " +
-                                  std::to_string(b) + "), which is not a constraint");
+    const auto ends = std::minmax(rider.a, rider.b);
+    if (std::none_of(c.begin(), c.end(), [&](const auto& s) { return std::minmax(s[0], s[1]) == ends; }))
+      throw std::invalid_argument("remesh: rider " + std::to_string(r) + " is on (" + std::to_string(rider.a) + ", " +
+                                  std::to_string(rider.b) + "), which is not a constraint");
   }
 }
 
