@@ -59,12 +59,7 @@ void solve_condensed(const mesh::FluidMesh& mesh, const StepNumbering& num,
       z.col(c).segment<2>(2 * e) = ze;
       const auto& tri = mesh.triangles[e];
       for (int k = 0; k < 3; ++k) {
-        for (int d = 0; d < 2; ++d) {
-          const VelocityTerms t = num.velocity_terms(tri[k], d);
-          const double value = b.a_cb.row(2 * k + d).dot(ze);
-          for (int j = 0; j < 2; ++j)
-            if (t.u[j] >= 0) rhs(t.u[j], c) -= t.w[j] * value;
-        }
+        for (int d = 0; d < 2; ++d) num.add_to_velocity(tri[k], d, -b.a_cb.row(2 * k + d).dot(ze), rhs.col(c));
         rhs(num.node_velocities + num.corner_p[e][k], c) += b.gc_b.col(k).dot(ze);
       }
     }
@@ -81,12 +76,7 @@ void solve_condensed(const mesh::FluidMesh& mesh, const StepNumbering& num,
       Eigen::Matrix<double, 6, 1> dvc;
       Eigen::Vector3d dpe;
       for (int k = 0; k < 3; ++k) {
-        for (int d = 0; d < 2; ++d) {
-          const VelocityTerms t = num.velocity_terms(tri[k], d);
-          dvc(2 * k + d) = 0.0;
-          for (int j = 0; j < 2; ++j)
-            if (t.u[j] >= 0) dvc(2 * k + d) += t.w[j] * x(t.u[j], c);
-        }
+        for (int d = 0; d < 2; ++d) dvc(2 * k + d) = num.velocity_in(tri[k], d, x.col(c));
         dpe(k) = x(num.node_velocities + num.corner_p[e][k], c);
       }
       dv.col(c).segment<2>(num.bubble(e)) = z.col(c).segment<2>(2 * e) + b.inv_bb * (b.g_b * dpe - b.a_bc * dvc);

@@ -46,11 +46,9 @@ void commit_velocity_sensitivities(const StepNumbering& num, const Eigen::Matrix
         if (rider) {
           // (1 - s) dv_a + s dv_b + ds (v_b - v_a), the ends' velocities committed
           const StepRider& r = num.riders[num.rider[i]];
-          const VelocityTerms t = num.velocity_terms(static_cast<int>(i), c);
           const std::vector<double>& v = c == 0 ? nodes.vx : nodes.vy;
-          d[NodeState::kDvx + c] = r.ds[k] * (v[r.b] - v[r.a]);
-          for (int j = 0; j < 2; ++j)
-            if (t.u[j] >= 0) d[NodeState::kDvx + c] += t.w[j] * dv(t.u[j], static_cast<Eigen::Index>(k));
+          d[NodeState::kDvx + c] = r.ds[k] * (v[r.b] - v[r.a]) +
+                                   num.velocity_in(static_cast<int>(i), c, dv.col(static_cast<Eigen::Index>(k)));
         } else {
           const double wall =
               wall_velocity_sensitivity.empty() ? 0.0 : wall_velocity_sensitivity[(i * num_params + k) * 2 + c];

@@ -81,12 +81,7 @@ double StepElements::wall_velocity(int i, int c) const {
 double StepElements::velocity(int i, int c, const Eigen::VectorXd& v) const {
   const int own = c == 0 ? num_->vx[i] : num_->vy[i];
   if (own >= 0) return v[own];
-  if (!num_->is_rider(i)) return wall_velocity(i, c);
-  const VelocityTerms t = num_->velocity_terms(i, c);
-  double sum = 0.0;
-  for (int j = 0; j < 2; ++j)
-    if (t.u[j] >= 0) sum += t.w[j] * v[t.u[j]];
-  return sum;
+  return num_->is_rider(i) ? num_->velocity_in(i, c, v) : wall_velocity(i, c);
 }
 
 void StepElements::assemble(StepResidual& r) const {
@@ -101,11 +96,7 @@ void StepElements::assemble(StepResidual& r) const {
     const auto& tri = mesh_->triangles[e];
     for (int a = 0; a < 3; ++a) {
       const int i = tri[a], q = num.corner_p[e][a];
-      for (int c = 0; c < 2; ++c) {
-        const VelocityTerms t = num.velocity_terms(i, c);
-        for (int j = 0; j < 2; ++j)
-          if (t.u[j] >= 0) r.rv[t.u[j]] += t.w[j] * re.rv(2 * a + c);
-      }
+      for (int c = 0; c < 2; ++c) num.add_to_velocity(i, c, re.rv(2 * a + c), r.rv);
       r.rp[q] += re.rp(a), r.rp_abs[q] += re.rp_abs(a), r.mp[q] += re.mp;
       if (volume_.dilatation != 0.0) {
         const double source = volume_.corner_source(e);

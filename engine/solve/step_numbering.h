@@ -63,6 +63,24 @@ struct StepNumbering {
     const StepRider &r = riders[rider[i]];
     return {{own[r.a], own[r.b]}, {1.0 - r.s, r.s}};
   }
+  // Node i's velocity component c in x (its terms' weighted sum; 0 where it has none), and
+  // value added to its terms in y by their weights (a rider's row shared out to its ends).
+  double velocity_in(int i, int c,
+                     const Eigen::Ref<const Eigen::VectorXd> &x) const {
+    const VelocityTerms t = velocity_terms(i, c);
+    double sum = 0.0;
+    for (int j = 0; j < 2; ++j)
+      if (t.u[j] >= 0)
+        sum += t.w[j] * x[t.u[j]];
+    return sum;
+  }
+  void add_to_velocity(int i, int c, double value,
+                       Eigen::Ref<Eigen::VectorXd> y) const {
+    const VelocityTerms t = velocity_terms(i, c);
+    for (int j = 0; j < 2; ++j)
+      if (t.u[j] >= 0)
+        y[t.u[j]] += t.w[j] * value;
+  }
   // Whether a corner of the triangle is a rider (its velocity rows and columns
   // are then its ends', condensed_terms).
   bool has_rider(const std::array<std::int32_t, 3> &tri) const;

@@ -132,11 +132,7 @@ void StepSensitivity::right_hand_sides(const ConvergedStep& c, const NodeState& 
       }
       if (volume.dilatation != 0.0) sp.array() += dsource(e, k);
       for (int a = 0; a < 3; ++a) {
-        for (int d = 0; d < 2; ++d) {
-          const VelocityTerms t = num.velocity_terms(tri[a], d);
-          for (int j = 0; j < 2; ++j)
-            if (t.u[j] >= 0) rv(t.u[j], k) += t.w[j] * sv(2 * a + d);
-        }
+        for (int d = 0; d < 2; ++d) num.add_to_velocity(tri[a], d, sv(2 * a + d), rv.col(k));
         rp(num.corner_p[e][a], k) += sp(a);
       }
       rv(bubble, k) += sv(6), rv(bubble + 1, k) += sv(7);
