@@ -1,7 +1,6 @@
 #pragma once
 // Where the water's surface meets a beam between two of its nodes at the start of a run, in the
-// formulations without beam riders (mesh/beam_riders.h: the incompressible one and the
-// global-bubble solver). A beam's nodes are the structure's and stay where they are, so there
+// formulation without beam riders (mesh/beam_riders.h: the incompressible one). A beam's nodes are the structure's and stay where they are, so there
 // the free edge from the last surface particle ends at a beam node off the water's level, and
 // still water next to the beam moves (0.11 m/s within 1 s with the level 0.6 of a 7.1 mm element
 // above a node, h = 5 mm, μ = 1e-3; at rest with a node at the level). The run warns, naming the

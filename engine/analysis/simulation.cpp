@@ -265,11 +265,10 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
   settings.geometric_terms = !options.drop_geometric_terms;
   state.solver = make_step_solver(problem);
   StepSolver& step = *state.solver;
-  // Beam riders (mesh/beam_riders.h) in the quasi-incompressible step with condensed bubbles,
-  // whose systems take their rows to their segments' ends; the other formulations do without.
+  // Beam riders (mesh/beam_riders.h) in the quasi-incompressible step, whose systems take their
+  // rows to their segments' ends; the incompressible formulation does without.
   std::optional<BeamRiderNodes> riders;
-  if (state.structure && !problem.beam_segments.empty() && !problem.incompressible &&
-      settings.formulation == StepSettings::Formulation::kCondensedBubble)
+  if (state.structure && !problem.beam_segments.empty() && !problem.incompressible)
     riders.emplace(problem.beam_segments, nodes);
 
   const int vtk_every = options.vtk_every.value_or(problem.vtk_every);

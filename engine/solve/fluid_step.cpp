@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -42,8 +41,6 @@ void UnifiedStep::solve(const mesh::FluidMesh& mesh, const StepSettings& s, cons
                         const std::atomic<bool>* cancel) {
   report_ = StepReport{};
   if (nodes.size() >= (std::size_t{1} << 21)) throw StepFailure("more than 2^21 nodes");
-  if (!s.riders.empty() && s.formulation != StepSettings::Formulation::kCondensedBubble)
-    throw std::logic_error("beam riders need the condensed-bubble formulation");
   num_ = number_unknowns(mesh, nodes, s.slip, s.structure.model, s.structure.node, s.riders);
   report_.velocity_unknowns = num_.velocities;
   report_.pressure_unknowns = num_.pressures;

@@ -1,5 +1,6 @@
 #include "engine/solve/global_bubble_system.h"
 
+#include <array>
 #include <vector>
 
 #include "engine/solve/fluid_step.h"
@@ -22,13 +23,21 @@ void GlobalBubbleSystem::factorize(const StepElements& elements, const Eigen::Ve
   for (int e = 0; e < ne; ++e) {
     const auto& m = mats[e];
     const auto& tri = mesh_->triangles[e];
-    const auto dof = num.element_velocities(tri, e);
-    for (int r = 0; r < 8; ++r) {
-      if (dof[r] < 0) continue;
-      for (int c = 0; c < 8; ++c)
-        if (dof[c] >= 0) kt.emplace_back(dof[r], dof[c], m.M(r, c) * inv_dt + m.K(r, c));
-      for (int a = 0; a < 3; ++a) gt.emplace_back(dof[r], num.corner_p[e][a], m.G(r, a));
-    }
+    // Each velocity row and column as its unknowns: a beam rider's are its segment ends' by
+    // their weights (StepNumbering::velocity_terms), the bubble's its own.
+    std::array<VelocityTerms, 8> t;
+    for (int r = 0; r < 6; ++r) t[r] = num.velocity_terms(tri[r / 2], r % 2);
+    t[6] = {{num.bubble(e), -1}, {1.0, 0.0}}, t[7] = {{num.bubble(e) + 1, -1}, {1.0, 0.0}};
+    for (int r = 0; r < 8; ++r)
+      for (int i = 0; i < 2; ++i) {
+        if (t[r].u[i] < 0) continue;
+        const int row = t[r].u[i];
+        const double wr = t[r].w[i];
+        for (int c = 0; c < 8; ++c)
+          for (int j = 0; j < 2; ++j)
+            if (t[c].u[j] >= 0) kt.emplace_back(row, t[c].u[j], wr * t[c].w[j] * (m.M(r, c) * inv_dt + m.K(r, c)));
+        for (int a = 0; a < 3; ++a) gt.emplace_back(row, num.corner_p[e][a], wr * m.G(r, a));
+      }
   }
   structure_->add_tangent([&kt](int row, int col, double value) { kt.emplace_back(row, col, value); });
   SparseMatrix kvv(num.velocities, num.velocities);
