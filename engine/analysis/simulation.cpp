@@ -11,7 +11,6 @@
 #include <span>
 #include <sstream>
 
-#include "engine/analysis/beam_contact_check.h"
 #include "engine/analysis/beam_rider_nodes.h"
 #include "engine/analysis/moving_walls.h"
 #include "engine/analysis/recorders.h"
@@ -265,11 +264,9 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
   settings.geometric_terms = !options.drop_geometric_terms;
   state.solver = make_step_solver(problem);
   StepSolver& step = *state.solver;
-  // Beam riders (mesh/beam_riders.h) in the quasi-incompressible step, whose systems take their
-  // rows to their segments' ends; the incompressible formulation does without.
+  // Beam riders (mesh/beam_riders.h), whose rows every step's systems take to their segments' ends.
   std::optional<BeamRiderNodes> riders;
-  if (state.structure && !problem.beam_segments.empty() && !problem.incompressible)
-    riders.emplace(problem.beam_segments, nodes);
+  if (state.structure && !problem.beam_segments.empty()) riders.emplace(problem.beam_segments, nodes);
 
   const int vtk_every = options.vtk_every.value_or(problem.vtk_every);
   std::unique_ptr<VtkSeries> vtk;
@@ -304,9 +301,6 @@ SimulationOutput simulate(const Problem& problem, const RunOptions& options, con
     }
     sum.remesh_seconds += since(t0);
     sum.fluid_area_initial = sum.fluid_area_final = fluid_area(mesh, nodes);
-    if (!riders)
-      for (auto& w : beam_contact_warnings(mesh, nodes, problem.beam_segments, problem.gx, problem.gy, problem.h))
-        sum.warnings.push_back(std::move(w));
     record(0.0);
     if (vtk) vtk->write(0.0, nodes, mesh, model);
   }

@@ -2,9 +2,11 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/base/assert.h"
 #include "engine/solve/gmres.h"
 
 namespace pfem {
@@ -46,12 +48,24 @@ void FractionalOperators::assemble_mass(const mesh::FluidMesh& mesh, std::span<c
   for (const int d : num_->structure)
     if (d >= 0) first_structure_ = std::min(first_structure_, d);
   Eigen::VectorXd mass = Eigen::VectorXd::Zero(nv);
+  // A beam rider's lumped mass, shared out to its segment's ends (structure unknowns) by their
+  // weights: (row, col, value).
+  std::vector<Eigen::Triplet<double>> shared;
   bubble_block_.resize(mesh.triangles.size());
   bubble_inverse_.resize(mesh.triangles.size());
   for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
-    const auto dof = num_->element_velocities(mesh.triangles[e], static_cast<int>(e));
-    for (int r = 0; r < 6; ++r)
-      if (dof[r] >= 0) mass[dof[r]] += lumped[e](r) / dt_;
+    const auto& tri = mesh.triangles[e];
+    for (int r = 0; r < 6; ++r) {
+      const VelocityTerms t = num_->velocity_terms(tri[r / 2], r % 2);
+      const double m = lumped[e](r) / dt_;
+      if (!num_->is_rider(tri[r / 2])) {
+        if (t.u[0] >= 0) mass[t.u[0]] += m;
+        continue;
+      }
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j)
+          if (t.u[i] >= 0 && t.u[j] >= 0) shared.emplace_back(t.u[i], t.u[j], t.w[i] * t.w[j] * m);
+    }
     Eigen::Matrix2d& bubble = bubble_block_[e];
     bubble = mats[e].K.block<2, 2>(6, 6);
     bubble(0, 0) += lumped[e](6) / dt_, bubble(1, 1) += lumped[e](7) / dt_;
@@ -60,6 +74,10 @@ void FractionalOperators::assemble_mass(const mesh::FluidMesh& mesh, std::span<c
   node_mass_ = mass.head(first_structure_);
   const int ns = nv - first_structure_;
   structure_matrix_ = mass.tail(ns).asDiagonal();
+  for (const auto& s : shared) {
+    PFEM_ASSERT(s.row() >= first_structure_ && s.col() >= first_structure_, "a rider's ends are the structure's");
+    structure_matrix_(s.row() - first_structure_, s.col() - first_structure_) += s.value();
+  }
   structure.add_tangent([this](int row, int col, double value) {
     structure_matrix_(row - first_structure_, col - first_structure_) += value;
   });
@@ -77,19 +95,23 @@ void FractionalOperators::assemble_poisson(const mesh::FluidMesh& mesh, std::spa
   for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
     const auto& m = mats[e];
     const int b = num_->bubble(static_cast<int>(e));
-    const auto dof = num_->element_velocities(mesh.triangles[e], static_cast<int>(e));
+    const auto& tri = mesh.triangles[e];
     for (int a = 0; a < 3; ++a) {
       const int q = num_->corner_p[e][a];
       for (int r = 0; r < 6; ++r) {
-        const int d = dof[r];
-        if (d < 0) continue;
-        g.emplace_back(d, q, m.G(r, a));
-        if (d < first_structure_) {
-          z.emplace_back(d, q, m.G(r, a) / node_mass_[d]);
-          continue;
+        const VelocityTerms t = num_->velocity_terms(tri[r / 2], r % 2);
+        for (int i = 0; i < 2; ++i) {
+          const int d = t.u[i];
+          if (d < 0) continue;
+          const double value = t.w[i] * m.G(r, a);
+          g.emplace_back(d, q, value);
+          if (d < first_structure_) {
+            z.emplace_back(d, q, value / node_mass_[d]);
+            continue;
+          }
+          if (coupled[q] < 0) coupled[q] = static_cast<int>(coupled_pressures.size()), coupled_pressures.push_back(q);
+          gs.emplace_back(d - first_structure_, coupled[q], value);
         }
-        if (coupled[q] < 0) coupled[q] = static_cast<int>(coupled_pressures.size()), coupled_pressures.push_back(q);
-        gs.emplace_back(d - first_structure_, coupled[q], m.G(r, a));
       }
       const Eigen::Vector2d gb = m.G.block<2, 1>(6, a), zb = bubble_inverse_[e] * gb;
       g.emplace_back(b, q, gb(0)), g.emplace_back(b + 1, q, gb(1));
@@ -130,10 +152,14 @@ void FractionalOperators::assemble_predictor(const mesh::FluidMesh& mesh, std::s
     for (Eigen::Index r = 0; r < structure_matrix_.rows(); ++r)
       t.emplace_back(first_structure_ + r, first_structure_ + c, structure_matrix_(r, c));
   for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
-    const auto dof = num_->element_velocities(mesh.triangles[e], static_cast<int>(e));
+    std::array<VelocityTerms, 6> terms;
+    for (int r = 0; r < 6; ++r) terms[r] = num_->velocity_terms(mesh.triangles[e][r / 2], r % 2);
     for (int r = 0; r < 6; ++r)
-      for (int c = 0; dof[r] >= 0 && c < 6; ++c)
-        if (dof[c] >= 0) t.emplace_back(dof[r], dof[c], mats[e].K(r, c));
+      for (int c = 0; c < 6; ++c)
+        for (int i = 0; i < 2; ++i)
+          for (int j = 0; j < 2; ++j)
+            if (terms[r].u[i] >= 0 && terms[c].u[j] >= 0)
+              t.emplace_back(terms[r].u[i], terms[c].u[j], terms[r].w[i] * terms[c].w[j] * mats[e].K(r, c));
   }
   predictor_matrix_.resize(nv, nv);
   predictor_matrix_.setFromTriplets(t.begin(), t.end());

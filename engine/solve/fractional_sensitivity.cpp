@@ -25,6 +25,7 @@
 #include <string>
 
 #include "engine/solve/fractional_step.h"
+#include "engine/solve/rider_shares.h"
 #include "engine/solve/step_commit.h"
 
 namespace pfem {
@@ -79,21 +80,28 @@ void FractionalStep::solve_sensitivities(const mesh::FluidMesh& mesh, const Step
         sv += c.rv, sp += c.rp;
       }
       for (int c = 0; c < 6; ++c) {
-        if (dof[c] >= 0) {  // L on the previous step's sensitivity
-          sv -= lag_v.col(c) * dvn(c), sp -= lag_p.col(c) * dvn(c);
-          continue;
-        }
         const std::size_t i = tri[c / 2];
-        const double w =
-            s.wall_velocity_sensitivity.empty() ? 0.0 : s.wall_velocity_sensitivity[(i * num_params + k) * 2 + c % 2];
+        const bool rider = num_.is_rider(tri[c / 2]);
+        if (dof[c] >= 0 || rider)  // L on the previous step's sensitivity
+          sv -= lag_v.col(c) * dvn(c), sp -= lag_p.col(c) * dvn(c);
+        // A moving wall's prescribed velocity sensitivity w, or a rider's velocity moving with its
+        // s at fixed unknowns, w = ds (v_b - v_a), through J's full column.
+        double w = 0.0;
+        if (rider) {
+          const StepRider& r = num_.riders[num_.rider[i]];
+          w = r.ds[k] * (velocity(r.b, c % 2) - velocity(r.a, c % 2));
+        } else if (dof[c] < 0 && !s.wall_velocity_sensitivity.empty()) {
+          w = s.wall_velocity_sensitivity[(i * num_params + k) * 2 + c % 2];
+        }
         sv -= jv.col(c) * w, sp -= jp.col(c) * w;
       }
       sp.array() += source(e, k);
-      for (int r = 0; r < 8; ++r)
-        if (dof[r] >= 0) rv(dof[r], k) += sv(r);
+      for (int r = 0; r < 6; ++r) num_.add_to_velocity(tri[r / 2], r % 2, sv(r), rv.col(k));
+      rv.block<2, 1>(num_.bubble(e), k) += sv.tail<2>();
       for (int a = 0; a < 3; ++a) rp(num_.corner_p[e][a], k) += sp(a);
     }
   }
+  add_rider_shares(num_, mesh, element_residuals_, rv);
   for (int k = 0; s.structure.model && k < num_params; ++k) {
     const Eigen::VectorXd r = structure_.sensitivity_rhs(nodes, k, v_);
     for (std::size_t j = 0; j < num_.structure.size(); ++j)

@@ -28,6 +28,7 @@ constexpr std::uint64_t kArchiveTag = 0x4653'4d31;  // "FSM1"
 void FractionalStep::archive(StateArchive& a) { a.expect(kArchiveTag, "(the incompressible step's tag)"); }
 
 double FractionalStep::velocity(int i, int c) const {
+  if (num_.is_rider(i)) return num_.velocity_in(i, c, v_);
   const int d = c == 0 ? num_.vx[i] : num_.vy[i];
   if (d >= 0) return v_[d];
   return wall_velocity_.empty() ? 0.0 : wall_velocity_[2 * static_cast<std::size_t>(i) + c];
@@ -36,7 +37,7 @@ double FractionalStep::velocity(int i, int c) const {
 void FractionalStep::begin(const mesh::FluidMesh& mesh, const StepSettings& s, const NodeState& nodes) {
   xn_ = nodes.x, yn_ = nodes.y, vxn_ = nodes.vx, vyn_ = nodes.vy;
   wall_velocity_ = s.wall_velocity;
-  num_ = number_unknowns(mesh, nodes, s.slip, s.structure.model, s.structure.node);
+  num_ = number_unknowns(mesh, nodes, s.slip, s.structure.model, s.structure.node, s.riders);
   report_.velocity_unknowns = num_.velocities, report_.pressure_unknowns = num_.pressures;
   volume_ = volume_correction(mesh, nodes, s.target_area, s.volume_relaxation, s.thickness);
   v_.setZero(num_.velocities);  // bubbles from rest (fluid/mini_lumped.h)
@@ -84,10 +85,10 @@ void FractionalStep::residuals(const mesh::FluidMesh& mesh) {
   force_squared_ = 0.0;
   for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
     const auto& r = element_residuals_[e];
-    const auto dof = num_.element_velocities(mesh.triangles[e], static_cast<int>(e));
+    const auto& tri = mesh.triangles[e];
     const fluid::ElementState st = element_state(mesh, static_cast<int>(e));
-    for (int k = 0; k < 8; ++k)
-      if (dof[k] >= 0) rv_[dof[k]] += r.rv(k);
+    for (int k = 0; k < 6; ++k) num_.add_to_velocity(tri[k / 2], k % 2, r.rv(k), rv_);
+    rv_.segment<2>(num_.bubble(static_cast<int>(e))) += r.rv.tail<2>();
     const double source = volume_.dilatation == 0.0 ? 0.0 : volume_.corner_source(e);
     for (int a = 0; a < 3; ++a) {
       const int q = num_.corner_p[e][a];
@@ -134,7 +135,7 @@ void FractionalStep::check_admissible(const mesh::FluidMesh& mesh, const StepSet
 
 void FractionalStep::commit(const mesh::FluidMesh& mesh, const StepSettings& s, NodeState& nodes) {
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (num_.vx[i] < 0 && num_.vy[i] < 0) continue;
+    if (num_.vx[i] < 0 && num_.vy[i] < 0 && !num_.is_rider(static_cast<int>(i))) continue;
     if (hits_wall_[i]) {  // taken out where it was
       nodes.kind[i] = mesh::NodeKind::Removed;
       ++report_.removed_particles;

@@ -8,6 +8,7 @@
 
 #include "engine/solve/fluid_step.h"
 #include "engine/solve/gmres.h"
+#include "engine/solve/rider_shares.h"
 #include "engine/solve/step_commit.h"
 
 namespace pfem {
@@ -41,29 +42,6 @@ LinearOperator solve_by(const Factorisation& f) {
     f.solve(y);
     return y;
   };
-}
-// A beam rider's velocity rows go to its segment's ends by (1 - s) and s, so their shares move
-// with s: -r ds to a's rows and +r ds to b's, r the rider's own rows at the converged iterate (the
-// water's force on it).
-void add_rider_shares(const ConvergedStep& c, Eigen::MatrixXd& rv) {
-  const StepNumbering& num = c.num;
-  if (num.riders.empty()) return;
-  std::vector<std::array<double, 2>> force(num.riders.size(), {0.0, 0.0});
-  const auto& residuals = c.elements.residuals();
-  for (std::size_t e = 0; e < c.mesh.triangles.size(); ++e)
-    for (int a = 0; a < 3; ++a)
-      if (const int i = c.mesh.triangles[e][a]; num.is_rider(i))
-        for (int d = 0; d < 2; ++d) force[num.rider[i]][d] += residuals[e].rv(2 * a + d);
-  for (std::size_t r = 0; r < num.riders.size(); ++r) {
-    const StepRider& rider = num.riders[r];
-    for (int d = 0; d < 2; ++d) {
-      const std::vector<int>& of = d == 0 ? num.vx : num.vy;
-      for (long k = 0; k < rv.cols(); ++k) {
-        if (of[rider.a] >= 0) rv(of[rider.a], k) -= rider.ds[k] * force[r][d];
-        if (of[rider.b] >= 0) rv(of[rider.b], k) += rider.ds[k] * force[r][d];
-      }
-    }
-  }
 }
 }  // namespace
 
@@ -138,7 +116,7 @@ void StepSensitivity::right_hand_sides(const ConvergedStep& c, const NodeState& 
       rv(bubble, k) += sv(6), rv(bubble + 1, k) += sv(7);
     }
   }
-  add_rider_shares(c, rv);
+  add_rider_shares(num, mesh, c.elements.residuals(), rv);
   for (int k = 0; s.structure.model && k < num_params; ++k) {
     const Eigen::VectorXd r = c.structure.sensitivity_rhs(nodes, k, c.v);
     for (std::size_t j = 0; j < num.structure.size(); ++j)
