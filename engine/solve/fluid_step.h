@@ -89,7 +89,7 @@ struct StepSettings {
   std::span<const double> wall_velocity;
   std::span<const double> wall_velocity_sensitivity;
   StructureCoupling structure;  // no structure when model is null
-  // Beam riders (engine/mesh/beam_riders.h; not in the incompressible formulation), of nodes the
+  // Beam riders (engine/mesh/beam_riders.h), of nodes the
   // structure does not list.
   std::vector<StepRider> riders;
   // DDM (theory §5): one seed per parameter (how it moves the fluid constants; the structure's
