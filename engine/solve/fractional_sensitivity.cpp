@@ -19,7 +19,8 @@
 // 0.3 s, and 0.12 times with K in the predictor. With every part of J in the solve (GMRES
 // preconditioned by this pass) the same right-hand sides give the finite differences within
 // 1e-5: the approximation is all in L and the one pass.) A moving wall's prescribed velocity
-// sensitivity is known exactly and enters through J's full columns.
+// sensitivity is known exactly and enters through J's full columns, and so do a beam rider's terms
+// (its velocity moving with its level s, the shares of its rows: step_sensitivity.cpp).
 #include <chrono>
 #include <limits>
 #include <string>
@@ -81,7 +82,7 @@ void FractionalStep::solve_sensitivities(const mesh::FluidMesh& mesh, const Step
       }
       for (int c = 0; c < 6; ++c) {
         const std::size_t i = tri[c / 2];
-        const bool rider = num_.is_rider(tri[c / 2]);
+        const bool rider = num_.is_rider(static_cast<int>(i));
         if (dof[c] >= 0 || rider)  // L on the previous step's sensitivity
           sv -= lag_v.col(c) * dvn(c), sp -= lag_p.col(c) * dvn(c);
         // A moving wall's prescribed velocity sensitivity w, or a rider's velocity moving with its

@@ -10,7 +10,8 @@
 // is below analysis.newton_tolerance, as the quasi-incompressible step's Newton loop does (the
 // same tests, newton_monitor.h). Everything around the step is the other formulation's: the
 // numbering of the unknowns (a pressure at every mesh node, free surface included: it is
-// traction free weakly), the structure's rows and tangent, the wall guard, the remeshing.
+// traction free weakly; a beam rider's velocity its segment's, step_numbering.h), the
+// structure's rows and tangent, the wall guard, the remeshing.
 //
 // Its DDM is the approximation the paper compares against (Zhu & Scott 2017, §3-§5; their
 // earlier DDM of the incompressible PFEM): the sensitivity equations are solved by one pass of
