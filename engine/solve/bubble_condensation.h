@@ -51,10 +51,7 @@ void put_rider_entries(const StepNumbering& num, const std::array<std::int32_t, 
   for (int c = 0; c < 6; ++c) rider[c] = num.is_rider(tri[c / 2]);
   for (int r = 0; r < 9; ++r)
     for (int c = 0; c < 9; ++c) {
-      if (!rider[r] && !rider[c]) continue;
-      for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j)
-          if (t[r].u[i] >= 0 && t[c].u[j] >= 0) put(t[r].u[i], t[c].u[j], t[r].w[i] * t[c].w[j] * k(r, c));
+      if (rider[r] || rider[c]) put_term_pairs(t[r], t[c], k(r, c), put);
     }
 }
 

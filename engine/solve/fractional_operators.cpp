@@ -62,9 +62,7 @@ void FractionalOperators::assemble_mass(const mesh::FluidMesh& mesh, std::span<c
         if (t.u[0] >= 0) mass[t.u[0]] += m;
         continue;
       }
-      for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j)
-          if (t.u[i] >= 0 && t.u[j] >= 0) shared.emplace_back(t.u[i], t.u[j], t.w[i] * t.w[j] * m);
+      put_term_pairs(t, t, m, [&shared](int row, int col, double value) { shared.emplace_back(row, col, value); });
     }
     Eigen::Matrix2d& bubble = bubble_block_[e];
     bubble = mats[e].K.block<2, 2>(6, 6);
@@ -156,10 +154,8 @@ void FractionalOperators::assemble_predictor(const mesh::FluidMesh& mesh, std::s
     for (int r = 0; r < 6; ++r) terms[r] = num_->velocity_terms(mesh.triangles[e][r / 2], r % 2);
     for (int r = 0; r < 6; ++r)
       for (int c = 0; c < 6; ++c)
-        for (int i = 0; i < 2; ++i)
-          for (int j = 0; j < 2; ++j)
-            if (terms[r].u[i] >= 0 && terms[c].u[j] >= 0)
-              t.emplace_back(terms[r].u[i], terms[c].u[j], terms[r].w[i] * terms[c].w[j] * mats[e].K(r, c));
+        put_term_pairs(terms[r], terms[c], mats[e].K(r, c),
+                       [&t](int row, int col, double value) { t.emplace_back(row, col, value); });
   }
   predictor_matrix_.resize(nv, nv);
   predictor_matrix_.setFromTriplets(t.begin(), t.end());

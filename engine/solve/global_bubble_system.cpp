@@ -28,16 +28,13 @@ void GlobalBubbleSystem::factorize(const StepElements& elements, const Eigen::Ve
     std::array<VelocityTerms, 8> t;
     for (int r = 0; r < 6; ++r) t[r] = num.velocity_terms(tri[r / 2], r % 2);
     t[6] = {{num.bubble(e), -1}, {1.0, 0.0}}, t[7] = {{num.bubble(e) + 1, -1}, {1.0, 0.0}};
-    for (int r = 0; r < 8; ++r)
-      for (int i = 0; i < 2; ++i) {
-        if (t[r].u[i] < 0) continue;
-        const int row = t[r].u[i];
-        const double wr = t[r].w[i];
-        for (int c = 0; c < 8; ++c)
-          for (int j = 0; j < 2; ++j)
-            if (t[c].u[j] >= 0) kt.emplace_back(row, t[c].u[j], wr * t[c].w[j] * (m.M(r, c) * inv_dt + m.K(r, c)));
-        for (int a = 0; a < 3; ++a) gt.emplace_back(row, num.corner_p[e][a], wr * m.G(r, a));
-      }
+    for (int r = 0; r < 8; ++r) {
+      for (int c = 0; c < 8; ++c)
+        put_term_pairs(t[r], t[c], m.M(r, c) * inv_dt + m.K(r, c),
+                       [&kt](int row, int col, double value) { kt.emplace_back(row, col, value); });
+      for (int i = 0; i < 2; ++i)
+        for (int a = 0; t[r].u[i] >= 0 && a < 3; ++a) gt.emplace_back(t[r].u[i], num.corner_p[e][a], t[r].w[i] * m.G(r, a));
+    }
   }
   structure_->add_tangent([&kt](int row, int col, double value) { kt.emplace_back(row, col, value); });
   SparseMatrix kvv(num.velocities, num.velocities);

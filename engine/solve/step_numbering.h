@@ -102,6 +102,18 @@ struct StepNumbering {
   condensed_unknowns(const std::array<std::int32_t, 3> &tri, int e) const;
 };
 
+// put(row, col, w_row w_col value) for each pair of the unknowns of two velocities: an element
+// matrix entry between them, where a beam rider's is shared out to its segment's ends by their
+// weights.
+template <class Put>
+void put_term_pairs(const VelocityTerms &row, const VelocityTerms &col,
+                    double value, Put &&put) {
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j)
+      if (row.u[i] >= 0 && col.u[j] >= 0)
+        put(row.u[i], col.u[j], row.w[i] * col.w[j] * value);
+}
+
 // slip: per node (empty: none), kSlipX or kSlipY for a slip wall's node;
 // structure_node: the NodeState index of each structure node (model null: no
 // structure); riders: the beam riders (structure nodes not in structure_node).
