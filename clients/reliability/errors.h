@@ -5,31 +5,20 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/field_error.h"
+
 namespace pfem::reliability {
 
-struct FieldError {
-  std::string path;
-  std::string message;
-  std::string to_string() const { return path.empty() ? message : path + ": " + message; }
-  bool operator==(const FieldError&) const = default;
-};
+using pfem::FieldError;
 
 // Thrown for an invalid problem or invalid options; what() holds every error, one per line.
 class ProblemError : public std::runtime_error {
  public:
   explicit ProblemError(std::vector<FieldError> errors)
-      : std::runtime_error(join(errors)), errors_(std::move(errors)) {}
+      : std::runtime_error(pfem::detail::join_field_errors(errors)), errors_(std::move(errors)) {}
   const std::vector<FieldError>& errors() const { return errors_; }
 
  private:
-  static std::string join(const std::vector<FieldError>& errors) {
-    std::string out;
-    for (const auto& e : errors) {
-      if (!out.empty()) out += '\n';
-      out += e.to_string();
-    }
-    return out;
-  }
   std::vector<FieldError> errors_;
 };
 

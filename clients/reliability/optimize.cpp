@@ -17,6 +17,7 @@
 
 #include "clients/reliability/json_writer.h"
 #include "clients/reliability/problem_io.h"
+#include "engine/base/json_errors.h"
 #include "engine/io/model_io.h"
 
 namespace pfem::optimize {
@@ -408,7 +409,9 @@ pfem::v1::OptimizationProblem parse_problem_json(std::string_view json) {
   options.ignore_unknown_fields = false;
   const auto status = google::protobuf::util::JsonStringToMessage(
       google::protobuf::StringPiece(json.data(), json.size()), &problem, options);
-  if (!status.ok()) throw ProblemError({rel::json_error(std::string(status.message()))});
+  if (!status.ok())
+    throw ProblemError(
+        json_errors(json, *pfem::v1::OptimizationProblem::descriptor(), "problem", std::string(status.message())));
   return problem;
 }
 

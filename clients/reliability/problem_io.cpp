@@ -6,33 +6,16 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
+
+#include "engine/base/json_errors.h"
 
 namespace pfem::reliability {
 
 namespace {
 
 using pfem::v1::RandomVariable;
-
-}  // namespace
-
-FieldError json_error(const std::string& status_message) {
-  std::string text = status_message.substr(0, status_message.find('\n'));
-  static const std::regex unknown(R"(^(?:\(([^)]*)\)\s*)?(\S+): Cannot find field\.$)");
-  static const std::regex located(R"(^\(([^)]*)\):\s*(.*)$)");
-  std::smatch m;
-  if (std::regex_match(text, m, unknown)) {
-    const std::string prefix = m[1].str();
-    return {prefix.empty() ? m[2].str() : prefix + "." + m[2].str(), "unknown field"};
-  }
-  if (std::regex_match(text, m, located)) return {m[1].str(), m[2].str()};
-  if (text.empty()) text = "the JSON parser rejected the input";
-  return {"", "invalid JSON: " + text};
-}
-
-namespace {
 
 bool is_identifier(const std::string& s) {
   if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
@@ -397,7 +380,9 @@ pfem::v1::ReliabilityProblem parse_problem_json(std::string_view json) {
   options.ignore_unknown_fields = false;
   const auto status = google::protobuf::util::JsonStringToMessage(
       google::protobuf::StringPiece(json.data(), json.size()), &problem, options);
-  if (!status.ok()) throw ProblemError({json_error(std::string(status.message()))});
+  if (!status.ok())
+    throw ProblemError(
+        json_errors(json, *pfem::v1::ReliabilityProblem::descriptor(), "problem", std::string(status.message())));
   return problem;
 }
 

@@ -17,11 +17,6 @@
 
 namespace pfem::reliability {
 
-// The field error of a protobuf JSON parser message:
-// "(variables[1]) foo: Cannot find field." -> {"variables[1].foo", "unknown field"};
-// "(variables[0].mean): invalid value ..." -> {"variables[0].mean", "invalid value ..."}.
-FieldError json_error(const std::string& status_message);
-
 // Parses proto3 JSON (unknown fields are errors). Throws ProblemError with the field path.
 pfem::v1::ReliabilityProblem parse_problem_json(std::string_view json);
 // Reads and parses a file. Throws ProblemError (also when the file cannot be read).

@@ -12,7 +12,8 @@ namespace pfem {
 struct FieldError {
   std::string path;
   std::string message;
-  std::string to_string() const { return path + ": " + message; }
+  std::string to_string() const { return path.empty() ? message : path + ": " + message; }
+  bool operator==(const FieldError&) const = default;
 };
 
 namespace detail {

@@ -180,7 +180,7 @@ TEST(Optimize, BadProblemFilesNameTheFieldAndExitWith2) {
   std::ofstream(dir.path / "unknown.json") << R"({"name": "x", "variables": [{"name": "w", "lowr": 1}]})";
   const CliRun unknown = pfem_optimize((dir.path / "unknown.json").string() + " --out x", dir.path);
   EXPECT_EQ(unknown.exit_code, 2);
-  EXPECT_EQ(unknown.err, "variables[0].lowr: unknown field\n");
+  EXPECT_EQ(unknown.err, "variables[0].lowr: unknown field of DesignVariable; did you mean 'lower'?\n");
   const CliRun missing = pfem_optimize("/nonexistent.json --out x", dir.path);
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_EQ(missing.err, "/nonexistent.json: cannot open the problem file\n");

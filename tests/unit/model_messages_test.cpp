@@ -80,6 +80,30 @@ TEST(ModelMessages, EveryUnknownFieldAtOnce) {
                                       "walls[1].closd: unknown field of Wall; did you mean 'closed'?"}));
 }
 
+// A value of the wrong kind is named by its path with what the field takes (protobuf's own
+// message was "(fluid.rho): invalid value "heavy" for type TYPE_DOUBLE" or "Proto field is not
+// repeating, cannot start list"), every one at once, inside lists too.
+TEST(ModelMessages, AValueOfTheWrongKindSaysWhatTheFieldTakes) {
+  EXPECT_EQ(parse_errors(R"({"fluid": [1000, 0.001]})"),
+            std::vector<std::string>{"fluid: expected an object (Fluid), found a list"});
+  EXPECT_EQ(parse_errors(R"({"walls": "box"})"),
+            std::vector<std::string>{"walls: expected a list, found the string \"box\""});
+  EXPECT_EQ(parse_errors(R"({"fluid": {"rho": "heavy", "mu": [1]}, "mesh": {"h": {"v": 1}},
+      "walls": [{"name": "w", "points": [{"x": 0, "y": "0"}, {"x": "a", "y": 1}], "closed": 1}],
+      "analysis": {"newton_max_iterations": 2.5}, "recorders": [{"name": 7, "point": 5}]})"),
+            (std::vector<std::string>{"fluid.rho: expected a number, found the string \"heavy\"",
+                                      "fluid.mu: expected a number, found a list",
+                                      "mesh.h: expected a number, found an object",
+                                      "walls[0].points[1].x: expected a number, found the string \"a\"",
+                                      "walls[0].closed: expected true or false, found the number 1",
+                                      "analysis.newton_max_iterations: expected a whole number, found the number 2.5",
+                                      "recorders[0].name: expected a string, found the number 7",
+                                      "recorders[0].point: expected an object (Vec2), found the number 5"}));
+  // What proto3 JSON accepts stays accepted: numbers as strings, null for a default.
+  EXPECT_TRUE(parse_errors(R"({"mesh": {"h": "0.01", "alpha": null}, "analysis": {"record_every": "2"}})").empty());
+}
+
+
 TEST(ModelMessages, ExamplesAndAPlainColumnHaveNoWarnings) {
   EXPECT_EQ(warnings(column()), std::vector<std::string>{});
   for (const char* name : {"hydrostatic", "dam-break", "sloshing-beam", "dam-break-obstacle", "dam-break-elastic-obstacle"})
