@@ -134,11 +134,13 @@ void field_errors(const nlohmann::ordered_json& v, const Descriptor& root, const
       out.push_back({here, unknown_field_message(root, d, key)});
       continue;
     }
-    // A repeated field takes a list (protobuf also takes a single value for a one-entry list).
+    // A repeated field takes a list (protobuf also takes a single value for a one-entry list,
+    // whose path is then that of the entry).
     const bool list = f->is_repeated() && value.is_array();
     for (std::size_t i = 0; i < (list ? value.size() : 1); ++i) {
       const auto& item = list ? value[i] : value;
-      const std::string at = list ? here + "[" + std::to_string(i) + "]" : here;
+      const bool entry = f->is_repeated() && (list || item.is_object());
+      const std::string at = entry ? here + "[" + std::to_string(i) + "]" : here;
       if (const std::string expected = expected_instead(*f, item); !expected.empty()) {
         const std::string takes = f->is_repeated() && !list ? "a list" : expected;
         out.push_back({at, "expected " + takes + ", found " + json_kind(item)});

@@ -103,7 +103,6 @@ TEST(ModelMessages, AValueOfTheWrongKindSaysWhatTheFieldTakes) {
   EXPECT_TRUE(parse_errors(R"({"mesh": {"h": "0.01", "alpha": null}, "analysis": {"record_every": "2"}})").empty());
 }
 
-
 TEST(ModelMessages, ExamplesAndAPlainColumnHaveNoWarnings) {
   EXPECT_EQ(warnings(column()), std::vector<std::string>{});
   for (const char* name : {"hydrostatic", "dam-break", "sloshing-beam", "dam-break-obstacle", "dam-break-elastic-obstacle"})

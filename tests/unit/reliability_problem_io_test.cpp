@@ -55,7 +55,7 @@ TEST(ReliabilityProblemIo, JsonErrorsNameTheField) {
   EXPECT_EQ(errors_of(problem(R"({"name": "R", "distribution": "normal", "mean": "abc"})")),
             Errors{"variables[0].mean: expected a number, found the string \"abc\""});
   EXPECT_EQ(errors_of(R"({"variables": {"name": "R", "mean": [5]}, "limit_state": "R - 1"})"),
-            (Errors{"variables.mean: expected a number, found a list",
+            (Errors{"variables[0].mean: expected a number, found a list",
                     "limit_state: expected an object (LimitState), found the string \"R - 1\""}));
   EXPECT_EQ(errors_of(R"({"name": })"), Errors{"problem: invalid JSON at line 1, column 10: syntax error while "
                                                "parsing value - unexpected '}'; expected '[', '{', or a literal"});
