@@ -170,7 +170,7 @@ class EngineModuleTest(unittest.TestCase):
                 exec(compile(match.group(1), "README tutorial", "exec"), {})
         finally:
             os.chdir(cwd)
-        self.assertIn("DDM and FDM agree", printed.getvalue())
+        self.assertIn("DDM and FDM agree: True", printed.getvalue())
         self.assertGreater(os.path.getsize(os.path.join(self.tmp, "tutorial", "sensitivities.png")), 1000)
 
 
