@@ -50,7 +50,7 @@ GradientCheck check_gradients(const pfem::v1::Model& model, RunOptions options, 
     for (const auto& r : ddm.responses.rows) max_response = std::max(max_response, std::abs(r[j / np]));
     const double theta = std::abs(s.parameter_values[j % np]);
     const double scale = max_response / (theta > 0.0 ? theta : 1.0);
-    row.negligible = std::max(row.max_fdm, row.max_ddm) < kNegligible * scale;
+    row.negligible = std::max(row.max_fdm, row.max_ddm) < kNegligibleSensitivity * scale;
     if (without_geometric && approximate.summary.status == RunStatus::kCompleted) {
       double unused = 0.0;
       row.without_geometric = relative_difference(approximate.sensitivities, fdm.sensitivities, j, unused);

@@ -5,9 +5,10 @@
 // For every recorder r and parameter k: the largest |DDM - FDM| over the recorded times,
 // relative to the largest |FDM| over the same times. Optionally the same figure for the DDM
 // without the geometric matrices H and T (the paper's baseline approximation), to show that
-// dropping them fails the check. A sensitivity that stays below kNegligible times its natural
-// scale max |r| / |theta| in both (a pressure w.r.t. the thickness, a fluid area w.r.t. a beam's
-// density) is marked negligible: there the FDM is round-off and a ratio says nothing.
+// dropping them fails the check. A sensitivity that stays below kNegligibleSensitivity (run.h)
+// times its natural scale max |r| / |theta| in both (a pressure w.r.t. the thickness, a fluid
+// area w.r.t. a beam's density) is marked negligible: there the FDM is round-off and a ratio
+// says nothing.
 #include <string>
 #include <vector>
 
@@ -15,15 +16,13 @@
 
 namespace pfem {
 
-inline constexpr double kNegligible = 1e-4;
-
 struct GradientCheckRow {
   std::string recorder, parameter;
   double max_fdm = 0.0;           // largest |FDM| over time
   double max_ddm = 0.0;           // largest |DDM| over time
   double ddm = 0.0;               // largest |DDM - FDM| / max_fdm
   double without_geometric = -1;  // same without H, T; -1 when not computed
-  bool negligible = false;        // max_fdm and max_ddm < kNegligible max |r| / |theta|
+  bool negligible = false;        // max_fdm and max_ddm < kNegligibleSensitivity max |r| / |theta|
 };
 
 struct GradientCheck {

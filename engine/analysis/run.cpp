@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -110,6 +111,38 @@ std::optional<Problem> problem_if_valid(const pfem::v1::Model& model, const Prob
   }
 }
 
+// A warning for each response whose central difference w.r.t. param is noise more than slope:
+// where its two one-sided differences differ by more than kFdmNoise of the central one
+// (max over time of |r+ - 2 r0 + r-| against |r+ - r-|: for a smooth response the second
+// difference is of order step^2, while the runs' Newton errors or a remeshing decision taken
+// differently enter both alike), unless the column is negligible against its natural scale
+// max |r| / theta_scale.
+void warn_noisy_differences(const Histories& plus, const Histories& base, const Histories& minus, double step,
+                            double theta_scale, const std::string& param, std::vector<std::string>& warnings) {
+  for (std::size_t j = 0; j < base.columns.size(); ++j) {
+    double max_r = 0.0, first = 0.0, second = 0.0;
+    for (std::size_t i = 0; i < base.rows.size(); ++i) {
+      const double a = plus.rows[i][j], r = base.rows[i][j], b = minus.rows[i][j];
+      max_r = std::max(max_r, std::abs(r));
+      first = std::max(first, std::abs(a - b));
+      second = std::max(second, std::abs(a - 2.0 * r + b));
+    }
+    if (first == 0.0 || first / (2.0 * step) * theta_scale < kNegligibleSensitivity * max_r) continue;
+    if (second <= kFdmNoise * first) continue;
+    // Comparable one-sided differences differ by Newton errors; opposite ones by an event, such
+    // as a remeshing decision, that one perturbed run took and the other did not.
+    const bool event = second > 0.5 * first;
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "d%s/d%s: the two one-sided differences differ by %.2g of the central one: %s",
+                  base.columns[j].c_str(), param.c_str(), second / first,
+                  event ? "the perturbed runs parted (a remeshing decision taken differently), not the slope; "
+                          "a smaller fdm_eps keeps them alike"
+                        : "the runs' Newton errors, not the slope; a larger fdm_eps outweighs them");
+    warnings.push_back(text);
+  }
+}
+
 // Central differences: 2 runs per parameter, step fdm_step(); a one-sided difference against
 // the unperturbed run where one side leaves the parameter's range.
 void finite_differences(const pfem::v1::Model& model, const Problem& base, const RunOptions& o,
@@ -149,6 +182,9 @@ void finite_differences(const pfem::v1::Model& model, const Problem& base, const
     for (std::size_t i = 0; i < sens.time.size(); ++i)
       for (std::size_t j = 0; j < nrec; ++j)
         d[i][j] = (a.responses.rows[i][j] - b.responses.rows[i][j]) / width;
+    if (plus && minus)
+      warn_noisy_differences(a.responses, result.responses, b.responses, step, step / o.fdm_eps, p->name,
+                             result.summary.warnings);
     per_param.push_back(std::move(d));
   }
   for (std::size_t i = 0; i < sens.time.size(); ++i)

@@ -37,6 +37,13 @@ inline constexpr int kMaxThreads = 256;
 // A run whose fluid area drifts further than this from its initial value gets a warning.
 inline constexpr double kAreaDriftWarning = 0.02;
 
+// A sensitivity below this times its natural scale max |r| / |theta| is negligible: its finite
+// difference is round-off (gradient_check.h leaves such a column out of its verdict).
+inline constexpr double kNegligibleSensitivity = 1e-4;
+// A central difference whose two one-sided differences differ by more than this of it is noise
+// more than slope (the run warns; error about half of that).
+inline constexpr double kFdmNoise = 2e-3;
+
 struct RunOptions {
   std::optional<double> t_end;  // overrides analysis.t_end
   std::optional<double> dt;     // overrides analysis.dt

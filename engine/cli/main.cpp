@@ -325,7 +325,7 @@ int check_gradients(const std::vector<std::string>& args) {
     std::printf("DDM within %g of FDM: %s", tolerance, pass ? "yes" : "NO");
     if (negligible > 0)
       std::printf(" (%d negligible: |d| < %g max |r| / |theta| in both, not compared)", negligible,
-                  pfem::kNegligible);
+                  pfem::kNegligibleSensitivity);
     std::printf("\n");
     return pass ? 0 : 1;
   });
