@@ -25,6 +25,7 @@
 
 #include "engine/analysis/run.h"
 #include "engine/io/model_io.h"
+#include "tests/integration/history_columns.h"
 
 namespace pfem {
 namespace {
@@ -58,11 +59,6 @@ double interpolate(const Series& s, double at) {
     if (s.x[i - 1] <= at && at <= s.x[i])
       return s.y[i - 1] + (s.y[i] - s.y[i - 1]) * (at - s.x[i - 1]) / (s.x[i] - s.x[i - 1]);
   return std::numeric_limits<double>::quiet_NaN();
-}
-
-int column(const Histories& h, const std::string& name) {
-  const auto it = std::find(h.columns.begin(), h.columns.end(), name);
-  return it == h.columns.end() ? -1 : static_cast<int>(it - h.columns.begin());
 }
 
 class DamBreak : public ::testing::Test {

@@ -10,14 +10,10 @@
 
 #include "engine/analysis/run.h"
 #include "engine/io/model_io.h"
+#include "tests/integration/history_columns.h"
 
 namespace pfem {
 namespace {
-
-int column(const Histories& h, const std::string& name) {
-  const auto it = std::find(h.columns.begin(), h.columns.end(), name);
-  return it == h.columns.end() ? -1 : static_cast<int>(it - h.columns.begin());
-}
 
 // The warnings that name column `name` and contain `why`.
 long warnings_of(const RunResult& r, const std::string& name, const std::string& why) {

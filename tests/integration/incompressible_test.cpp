@@ -19,6 +19,7 @@
 #include "engine/io/model_io.h"
 #include "engine/io/model_warnings.h"
 #include "tests/integration/formulation_comparison.h"
+#include "tests/integration/history_columns.h"
 
 namespace pfem {
 namespace {
@@ -38,11 +39,6 @@ const char* kStillWater = R"({
                 {"name": "fluid_area", "quantity": "fluid_area"},
                 {"name": "max_speed", "quantity": "max_speed"}]
 })";
-
-int column(const Histories& h, const std::string& name) {
-  const auto it = std::find(h.columns.begin(), h.columns.end(), name);
-  return it == h.columns.end() ? -1 : static_cast<int>(it - h.columns.begin());
-}
 
 TEST(Incompressible, StillWaterKeepsRhoGDAtTheBottomAndItsArea) {
   const RunResult r = run(parse_model_json(kStillWater), RunOptions{});
