@@ -6,11 +6,6 @@
 namespace pfem {
 namespace {
 
-int column_index(const Histories& h, const std::string& name) {
-  const auto it = std::find(h.columns.begin(), h.columns.end(), name);
-  return it == h.columns.end() ? -1 : static_cast<int>(it - h.columns.begin());
-}
-
 // The row of the sensitivity histories recorded at responses.time[row]. Both histories are
 // sampled at the same steps, so the row index normally matches; the time decides otherwise.
 std::size_t sensitivity_row(const Histories& responses, const Histories& sensitivities,
@@ -31,7 +26,7 @@ FunctionalValue evaluate_functional(const Histories& responses, const Histories&
                                     std::span<const std::string> params,
                                     const FunctionalSpec& spec) {
   if (auto bad = check_functional_window(spec)) throw FunctionalError(bad->first, bad->second);
-  const int col = column_index(responses, spec.recorder);
+  const int col = responses.column(spec.recorder);
   if (col < 0) throw FunctionalError("recorder", "no recorder '" + spec.recorder + "'");
   const std::size_t n = responses.time.size();
   if (n == 0 || responses.rows.size() != n) {
@@ -40,7 +35,7 @@ FunctionalValue evaluate_functional(const Histories& responses, const Histories&
   std::vector<int> sens_cols;
   for (const auto& p : params) {
     const std::string name = "d" + spec.recorder + "/d" + p;
-    const int c = column_index(sensitivities, name);
+    const int c = sensitivities.column(name);
     if (c < 0) throw FunctionalError("sensitivities", "no sensitivity column '" + name + "'");
     sens_cols.push_back(c);
   }

@@ -2,6 +2,7 @@
 // What one run gives back (pfem::run, engine/analysis/run.h): response and sensitivity histories
 // and a summary. Plain data: written to files by engine/io/results_io.h, carried on the wire by
 // wire/convert.h.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,12 @@ struct Histories {
   std::vector<std::string> columns;        // without the leading "time"
   std::vector<double> time;                // one entry per row
   std::vector<std::vector<double>> rows;   // rows[i][j]: column j at time[i]
+
+  // The index of the column named `name`, -1 if there is none.
+  int column(const std::string& name) const {
+    const auto it = std::find(columns.begin(), columns.end(), name);
+    return it == columns.end() ? -1 : static_cast<int>(it - columns.begin());
+  }
 };
 
 struct RunSummary {

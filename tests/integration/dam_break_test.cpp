@@ -25,7 +25,6 @@
 
 #include "engine/analysis/run.h"
 #include "engine/io/model_io.h"
-#include "tests/integration/history_columns.h"
 
 namespace pfem {
 namespace {
@@ -95,7 +94,7 @@ TEST_F(DamBreak, FrontFollowsMartinMoyceUpToThreeColumnWidths) {
   ASSERT_NEAR(a_, 0.146, 1e-12);
   const double g = model_->has_gravity() ? std::hypot(model_->gravity().x(), model_->gravity().y()) : 9.81;
   const auto& h = result_->responses;
-  const int front = column(h, "front_x");
+  const int front = h.column("front_x");
   ASSERT_GE(front, 0);
   Series sim;  // Z(T) of the simulation
   for (std::size_t i = 0; i < h.time.size(); ++i) {
@@ -124,7 +123,7 @@ TEST_F(DamBreak, FrontFollowsMartinMoyceUpToThreeColumnWidths) {
 
 TEST_F(DamBreak, FluidAreaIsConserved) {
   const auto& h = result_->responses;
-  const int area = column(h, "fluid_area");
+  const int area = h.column("fluid_area");
   ASSERT_GE(area, 0);
   const double area0 = h.rows.front()[area];
   ASSERT_GT(area0, 0.0);

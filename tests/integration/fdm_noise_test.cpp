@@ -10,7 +10,6 @@
 
 #include "engine/analysis/run.h"
 #include "engine/io/model_io.h"
-#include "tests/integration/history_columns.h"
 
 namespace pfem {
 namespace {
@@ -24,7 +23,7 @@ long warnings_of(const RunResult& r, const std::string& name, const std::string&
 
 // Largest |a - b| over time relative to the largest |b| in column name.
 double relative_difference(const Histories& a, const Histories& b, const std::string& name) {
-  const int j = column(a, name);
+  const int j = a.column(name);
   EXPECT_GE(j, 0) << name;
   double diff = 0.0, scale = 0.0;
   for (std::size_t i = 0; i < a.rows.size(); ++i) {

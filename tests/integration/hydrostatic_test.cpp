@@ -9,7 +9,6 @@
 
 #include "engine/analysis/run.h"
 #include "engine/io/model_io.h"
-#include "tests/integration/history_columns.h"
 
 namespace pfem {
 namespace {
@@ -22,7 +21,7 @@ TEST(Hydrostatic, StillWaterStaysStillWithRhoGHAtTheBottom) {
   ASSERT_EQ(r.summary.status, RunStatus::kCompleted) << r.summary.message;
 
   const auto& h = r.responses;
-  const int bottom_p = column(h, "bottom_p"), area = column(h, "fluid_area"), speed = column(h, "max_speed");
+  const int bottom_p = h.column("bottom_p"), area = h.column("fluid_area"), speed = h.column("max_speed");
   ASSERT_GE(bottom_p, 0);
   ASSERT_GE(area, 0);
   ASSERT_GE(speed, 0);
@@ -66,7 +65,7 @@ TEST(Hydrostatic, TheLastStepEndsAtTEnd) {
   ASSERT_EQ(r.responses.time.size(), 4u);
   EXPECT_DOUBLE_EQ(r.responses.time[2], 0.04);
   EXPECT_DOUBLE_EQ(r.responses.time[3], 0.05);
-  const int bottom_p = column(r.responses, "bottom_p");
+  const int bottom_p = r.responses.column("bottom_p");
   ASSERT_GE(bottom_p, 0);
   EXPECT_NEAR(r.responses.rows.back()[bottom_p], model.fluid().rho() * 9.81 * 0.2, 2.0);
 }
@@ -85,7 +84,7 @@ TEST(Hydrostatic, FdmOfTheBottomPressureIsGHAndALooseNewtonToleranceIsWarnedOf) 
   };
   const RunResult tight = run(model, options);
   ASSERT_EQ(tight.summary.status, RunStatus::kCompleted) << tight.summary.message;
-  const int dp = column(tight.sensitivities, "dbottom_p/drho_f");
+  const int dp = tight.sensitivities.column("dbottom_p/drho_f");
   ASSERT_GE(dp, 0);
   EXPECT_NEAR(tight.sensitivities.rows.back()[dp], 9.81 * 0.2, 0.02 * 9.81 * 0.2);
   EXPECT_EQ(fdm_tolerance_warnings(tight), 0);

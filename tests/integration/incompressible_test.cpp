@@ -19,7 +19,6 @@
 #include "engine/io/model_io.h"
 #include "engine/io/model_warnings.h"
 #include "tests/integration/formulation_comparison.h"
-#include "tests/integration/history_columns.h"
 
 namespace pfem {
 namespace {
@@ -44,7 +43,7 @@ TEST(Incompressible, StillWaterKeepsRhoGDAtTheBottomAndItsArea) {
   const RunResult r = run(parse_model_json(kStillWater), RunOptions{});
   ASSERT_EQ(r.summary.status, RunStatus::kCompleted) << r.summary.message;
   const auto& h = r.responses;
-  const int p = column(h, "bottom_p"), area = column(h, "fluid_area"), speed = column(h, "max_speed");
+  const int p = h.column("bottom_p"), area = h.column("fluid_area"), speed = h.column("max_speed");
   ASSERT_GE(std::min({p, area, speed}), 0);
   const double area0 = h.rows.front()[area], rho_g_d = kRho * kG * area0 / kWidth;
   double worst_p = 0.0, worst_area = 0.0, fastest = 0.0;
