@@ -111,14 +111,15 @@ std::optional<Problem> problem_if_valid(const pfem::v1::Model& model, const Prob
   }
 }
 
-// A warning for each response whose central difference w.r.t. param is noise more than slope:
-// where its two one-sided differences differ by more than kFdmNoise of the central one
-// (max over time of |r+ - 2 r0 + r-| against |r+ - r-|: for a smooth response the second
+// For each response, how far its central difference w.r.t. param is from a slope: the largest
+// |r+ - 2 r0 + r-| over time against the largest |r+ - r-| (for a smooth response the second
 // difference is of order step^2, while the runs' Newton errors or a remeshing decision taken
-// differently enter both alike), unless the column is negligible against its natural scale
-// max |r| / theta_scale.
-void warn_noisy_differences(const Histories& plus, const Histories& base, const Histories& minus, double step,
-                            double theta_scale, const std::string& param, std::vector<std::string>& warnings) {
+// differently enter both alike), 0 where the column is negligible against its natural scale
+// max |r| / theta_scale. A warning for each above kFdmNoise.
+std::vector<double> one_sided_spreads(const Histories& plus, const Histories& base, const Histories& minus,
+                                      double step, double theta_scale, const std::string& param,
+                                      std::vector<std::string>& warnings) {
+  std::vector<double> spreads(base.columns.size(), 0.0);
   for (std::size_t j = 0; j < base.columns.size(); ++j) {
     double max_r = 0.0, first = 0.0, second = 0.0;
     for (std::size_t i = 0; i < base.rows.size(); ++i) {
@@ -128,19 +129,22 @@ void warn_noisy_differences(const Histories& plus, const Histories& base, const 
       second = std::max(second, std::abs(a - 2.0 * r + b));
     }
     if (first == 0.0 || first / (2.0 * step) * theta_scale < kNegligibleSensitivity * max_r) continue;
-    if (second <= kFdmNoise * first) continue;
+    spreads[j] = second / first;
+    if (spreads[j] <= kFdmNoise) continue;
     // Comparable one-sided differences differ by Newton errors; opposite ones by an event, such
-    // as a remeshing decision, that one perturbed run took and the other did not.
-    const bool event = second > 0.5 * first;
+    // as a remeshing decision, that one perturbed run took and the other did not, or are the
+    // round-off of a response that is round-off itself.
+    const bool event = spreads[j] > kFdmParted;
     char text[400];
     std::snprintf(text, sizeof text,
                   "d%s/d%s: the two one-sided differences differ by %.2g of the central one: %s",
-                  base.columns[j].c_str(), param.c_str(), second / first,
-                  event ? "the perturbed runs parted (a remeshing decision taken differently), not the slope; "
-                          "a smaller fdm_eps keeps them alike"
+                  base.columns[j].c_str(), param.c_str(), spreads[j],
+                  event ? "the perturbed runs parted (a remeshing decision taken differently) or the response "
+                          "is round-off, not the slope; a smaller fdm_eps keeps parted runs alike"
                         : "the runs' Newton errors, not the slope; a larger fdm_eps outweighs them");
     warnings.push_back(text);
   }
+  return spreads;
 }
 
 // Central differences: 2 runs per parameter, step fdm_step(); a one-sided difference against
@@ -157,6 +161,7 @@ void finite_differences(const pfem::v1::Model& model, const Problem& base, const
     for (const auto* p : params) sens.columns.push_back("d" + rec + "/d" + p->name);
   const std::size_t nrec = result.responses.columns.size();
   std::vector<std::vector<std::vector<double>>> per_param;  // [param][row][recorder]
+  std::vector<std::vector<double>> spread_per_param;        // [param][recorder]
   for (const auto* p : params) {
     const double step = fdm_step(base, *p, o.fdm_eps);
     const auto plus = problem_if_valid(model, base, *p, step);
@@ -182,14 +187,16 @@ void finite_differences(const pfem::v1::Model& model, const Problem& base, const
     for (std::size_t i = 0; i < sens.time.size(); ++i)
       for (std::size_t j = 0; j < nrec; ++j)
         d[i][j] = (a.responses.rows[i][j] - b.responses.rows[i][j]) / width;
-    if (plus && minus)
-      warn_noisy_differences(a.responses, result.responses, b.responses, step, step / o.fdm_eps, p->name,
-                             result.summary.warnings);
+    spread_per_param.push_back(plus && minus ? one_sided_spreads(a.responses, result.responses, b.responses, step,
+                                                                  step / o.fdm_eps, p->name, result.summary.warnings)
+                                             : std::vector<double>(nrec, 0.0));
     per_param.push_back(std::move(d));
   }
   for (std::size_t i = 0; i < sens.time.size(); ++i)
     for (std::size_t j = 0; j < nrec; ++j)
       for (std::size_t k = 0; k < params.size(); ++k) sens.rows[i].push_back(per_param[k][i][j]);
+  for (std::size_t j = 0; j < nrec; ++j)
+    for (std::size_t k = 0; k < params.size(); ++k) result.fdm_spread.push_back(spread_per_param[k][j]);
   result.summary.sensitivity_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

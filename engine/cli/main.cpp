@@ -315,17 +315,32 @@ int check_gradients(const std::vector<std::string>& args) {
     std::printf("max over time of |DDM - FDM| / max |FDM|\n");
     std::printf("%-16s %-12s %12s %12s %14s\n", "recorder", "parameter", "max |FDM|", "DDM", "without H,T");
     bool pass = true;
-    int negligible = 0;
+    int compared = 0, negligible = 0, not_a_slope = 0, unmoved = 0;
     for (const auto& r : check.rows) {
+      const char* mark = r.negligible ? "  negligible" : r.not_a_slope ? "  FDM not a slope" : r.unmoved ? "  unmoved" : "";
       std::printf("%-16s %-12s %12.4e %12.2e %14.2e%s\n", r.recorder.c_str(), r.parameter.c_str(), r.max_fdm, r.ddm,
-                  r.without_geometric, r.negligible ? "  negligible" : "");
-      pass = pass && (r.negligible || r.ddm <= tolerance);
-      negligible += r.negligible;
+                  r.without_geometric, mark);
+      pass = pass && (!r.compared() || r.ddm <= tolerance);
+      compared += r.compared(), negligible += r.negligible, not_a_slope += !r.negligible && r.not_a_slope;
+      unmoved += !r.negligible && !r.not_a_slope && r.unmoved;
     }
-    std::printf("DDM within %g of FDM: %s", tolerance, pass ? "yes" : "NO");
-    if (negligible > 0)
-      std::printf(" (%d negligible: |d| < %g max |r| / |theta| in both, not compared)", negligible,
-                  pfem::kNegligibleSensitivity);
+    // A check that compared nothing has verified nothing.
+    pass = pass && compared > 0;
+    std::printf("DDM within %g of FDM: %s, %d of %zu columns", tolerance, pass ? "yes" : "NO", compared,
+                check.rows.size());
+    std::vector<std::string> left_out;
+    if (negligible > 0) {
+      char text[100];
+      std::snprintf(text, sizeof text, "%d negligible: |d| < %g max |r| / |theta| in both", negligible,
+                    pfem::kNegligibleSensitivity);
+      left_out.push_back(text);
+    }
+    if (not_a_slope > 0)
+      left_out.push_back(std::to_string(not_a_slope) + " whose FDM is not a slope: see the warnings");
+    if (unmoved > 0) left_out.push_back(std::to_string(unmoved) + " unmoved: the response and its FDM 0 throughout");
+    for (std::size_t i = 0; i < left_out.size(); ++i)
+      std::printf("%s%s", i == 0 ? " (not compared: " : "; ", left_out[i].c_str());
+    if (!left_out.empty()) std::printf(")");
     std::printf("\n");
     return pass ? 0 : 1;
   });

@@ -67,6 +67,11 @@ struct RunResult {
   Histories responses;      // columns: recorder names
   Histories sensitivities;  // columns: "d<recorder>/d<param>", empty without sensitivity
   RunSummary summary;
+  // Central finite differences only (in memory; not written or sent): per sensitivity column,
+  // the largest |r+ - 2 r0 + r-| over time against the largest |r+ - r-|, how far the central
+  // difference is from a slope (0 for a one-sided difference, a column of zeros or a negligible
+  // one; engine/analysis/run.h).
+  std::vector<double> fdm_spread;
 };
 
 }  // namespace pfem
