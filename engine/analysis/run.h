@@ -44,7 +44,8 @@ inline constexpr double kNegligibleSensitivity = 1e-4;
 // more than slope (the run warns; error about half of that).
 inline constexpr double kFdmNoise = 2e-3;
 // ... and by more than this, no slope at all: the perturbed runs parted (a remeshing decision
-// taken differently; gradient_check.h leaves such a column out of its verdict).
+// taken differently) or the response is round-off (gradient_check.h leaves such a column out
+// of its verdict).
 inline constexpr double kFdmParted = 0.5;
 
 struct RunOptions {
