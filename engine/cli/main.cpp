@@ -317,7 +317,11 @@ int check_gradients(const std::vector<std::string>& args) {
     bool pass = true;
     int compared = 0, negligible = 0, not_a_slope = 0, unmoved = 0;
     for (const auto& r : check.rows) {
-      const char* mark = r.negligible ? "  negligible" : r.not_a_slope ? "  FDM not a slope" : r.unmoved ? "  unmoved" : "";
+      // An unmoved column's ratio is 0 or inf: its DDM's own size says whether it is round-off.
+      char unmoved_mark[64];
+      std::snprintf(unmoved_mark, sizeof unmoved_mark, "  unmoved, max |DDM| %.2e", r.max_ddm);
+      const char* mark =
+          r.negligible ? "  negligible" : r.not_a_slope ? "  FDM not a slope" : r.unmoved ? unmoved_mark : "";
       std::printf("%-16s %-12s %12.4e %12.2e %14.2e%s\n", r.recorder.c_str(), r.parameter.c_str(), r.max_fdm, r.ddm,
                   r.without_geometric, mark);
       pass = pass && (!r.compared() || r.ddm <= tolerance);
