@@ -49,8 +49,7 @@ GradientCheck check_gradients(const pfem::v1::Model& model, RunOptions options, 
     double max_response = 0.0;
     for (const auto& r : ddm.responses.rows) max_response = std::max(max_response, std::abs(r[j / np]));
     const double theta = std::abs(s.parameter_values[j % np]);
-    const double scale = max_response / (theta > 0.0 ? theta : 1.0);
-    row.negligible = std::max(row.max_fdm, row.max_ddm) < kNegligibleSensitivity * scale;
+    row.negligible = negligible_sensitivity(std::max(row.max_fdm, row.max_ddm), max_response, theta > 0.0 ? theta : 1.0);
     row.not_a_slope = j < fdm.fdm_spread.size() && fdm.fdm_spread[j] > kFdmParted;
     row.unmoved = max_response == 0.0 && row.max_fdm == 0.0;
     if (without_geometric && approximate.summary.status == RunStatus::kCompleted) {

@@ -128,7 +128,7 @@ std::vector<double> one_sided_spreads(const Histories& plus, const Histories& ba
       first = std::max(first, std::abs(a - b));
       second = std::max(second, std::abs(a - 2.0 * r + b));
     }
-    if (first == 0.0 || first / (2.0 * step) * theta_scale < kNegligibleSensitivity * max_r) continue;
+    if (first == 0.0 || negligible_sensitivity(first / (2.0 * step), max_r, theta_scale)) continue;
     spreads[j] = second / first;
     if (spreads[j] <= kFdmNoise) continue;
     // Comparable one-sided differences differ by Newton errors; opposite ones by an event, such

@@ -40,6 +40,11 @@ inline constexpr double kAreaDriftWarning = 0.02;
 // A sensitivity below this times its natural scale max |r| / |theta| is negligible: its finite
 // difference is round-off (gradient_check.h leaves such a column out of its verdict).
 inline constexpr double kNegligibleSensitivity = 1e-4;
+// Whether a sensitivity of largest size `sensitivity` is negligible for a response of largest
+// size max_response and a parameter of size theta_scale (|theta|, 1 where theta is 0).
+inline bool negligible_sensitivity(double sensitivity, double max_response, double theta_scale) {
+  return sensitivity * theta_scale < kNegligibleSensitivity * max_response;
+}
 // A central difference whose two one-sided differences differ by more than this of it is noise
 // more than slope (the run warns; error about half of that).
 inline constexpr double kFdmNoise = 2e-3;

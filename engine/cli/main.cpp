@@ -317,16 +317,20 @@ int check_gradients(const std::vector<std::string>& args) {
     bool pass = true;
     int compared = 0, negligible = 0, not_a_slope = 0, unmoved = 0;
     for (const auto& r : check.rows) {
-      // An unmoved column's ratio is 0 or inf: its DDM's own size says whether it is round-off.
-      char unmoved_mark[64];
-      std::snprintf(unmoved_mark, sizeof unmoved_mark, "  unmoved, max |DDM| %.2e", r.max_ddm);
-      const char* mark =
-          r.negligible ? "  negligible" : r.not_a_slope ? "  FDM not a slope" : r.unmoved ? unmoved_mark : "";
+      char mark[64] = "";
+      if (r.negligible) {
+        std::snprintf(mark, sizeof mark, "  negligible"), ++negligible;
+      } else if (r.not_a_slope) {
+        std::snprintf(mark, sizeof mark, "  FDM not a slope"), ++not_a_slope;
+      } else if (r.unmoved) {
+        // Its ratio is 0 or inf: its DDM's own size says whether that is round-off.
+        std::snprintf(mark, sizeof mark, "  unmoved, max |DDM| %.2e", r.max_ddm), ++unmoved;
+      } else {
+        ++compared;
+        pass = pass && r.ddm <= tolerance;
+      }
       std::printf("%-16s %-12s %12.4e %12.2e %14.2e%s\n", r.recorder.c_str(), r.parameter.c_str(), r.max_fdm, r.ddm,
                   r.without_geometric, mark);
-      pass = pass && (!r.compared() || r.ddm <= tolerance);
-      compared += r.compared(), negligible += r.negligible, not_a_slope += !r.negligible && r.not_a_slope;
-      unmoved += !r.negligible && !r.not_a_slope && r.unmoved;
     }
     // A check that compared nothing has verified nothing.
     pass = pass && compared > 0;

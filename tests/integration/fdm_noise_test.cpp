@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "engine/analysis/gradient_check.h"
@@ -23,10 +24,12 @@ long warnings_of(const RunResult& r, const std::string& name, const std::string&
   });
 }
 
-// Largest |a - b| over time relative to the largest |b| in column name.
+// Largest |a - b| over time relative to the largest |b| in column name (NaN, failing any
+// comparison, where there is none).
 double relative_difference(const Histories& a, const Histories& b, const std::string& name) {
   const int j = a.column(name);
   EXPECT_GE(j, 0) << name;
+  if (j < 0) return std::numeric_limits<double>::quiet_NaN();
   double diff = 0.0, scale = 0.0;
   for (std::size_t i = 0; i < a.rows.size(); ++i) {
     diff = std::max(diff, std::abs(a.rows[i][j] - b.rows[i][j]));
