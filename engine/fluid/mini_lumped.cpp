@@ -37,7 +37,7 @@ void lumped_geometric_derivatives(const TriangleGeometry& g, const MiniMatrices&
 ElementResidual lumped_conditional_derivative(const TriangleGeometry& g, const MiniMatrices& m, const Vec8& ml,
                                               const FluidConstants& f, double thickness, double dt,
                                               const ElementState& s, const FluidSeed& seed) {
-  ElementResidual d = conditional_derivative(g, m, f, thickness, dt, s, seed);
+  ElementResidual d = conditional_derivative(scaled_terms(g, m, f, thickness, dt, s, seed), f, thickness, seed);
   d.rv += (seed.rho / f.rho + seed.thickness / thickness) * lumping_difference(m, ml, dt, s);
   return d;
 }

@@ -106,24 +106,29 @@ void geometric_derivatives(const TriangleGeometry& g, const MiniMatrices& m, dou
   }
 }
 
-ElementResidual conditional_derivative(const TriangleGeometry& g, const MiniMatrices& m, const FluidConstants& f, double thickness,
-                                       double dt, const ElementState& s, const FluidSeed& seed) {
-  const Vec8 inertia_body = m.F - m.M * ((s.v - s.vn) / dt);  // proportional to rho t
-  const Vec3 compressibility = -m.Mp.cwiseProduct(s.p - s.pn) / dt;  // to t / kappa
-  const ElementResidual r = element_residual(m, dt, s);
-  ElementResidual out{seed.thickness / thickness * r.rv, seed.thickness / thickness * r.rp};
-  out.rv += seed.rho / f.rho * inertia_body;
-  out.rp -= seed.kappa / f.kappa * compressibility;
-  if (seed.mu != 0.0) {
-    // K is linear in mu; at mu = 0 it vanishes, so take the matrix of a unit viscosity then.
-    if (f.mu > 0.0) {
-      out.rv -= seed.mu / f.mu * (m.K * s.v);
-    } else {
-      MiniMatrices unit;
-      mini_matrices(g, {f.rho, 1.0, f.kappa}, thickness, 0.0, 0.0, unit);
-      out.rv -= seed.mu * (unit.K * s.v);
-    }
+ScaledTerms scaled_terms(const TriangleGeometry& g, const MiniMatrices& m, const FluidConstants& f, double thickness,
+                         double dt, const ElementState& s, const FluidSeed& moved) {
+  ScaledTerms t;
+  if (moved.rho != 0.0) t.inertia_body = m.F - m.M.lazyProduct((s.v - s.vn) / dt);
+  if (moved.kappa != 0.0) t.compressibility = -m.Mp.cwiseProduct(s.p - s.pn) / dt;
+  if (moved.mu != 0.0 && f.mu > 0.0) {
+    t.viscous = m.K.lazyProduct(s.v);
+  } else if (moved.mu != 0.0) {
+    MiniMatrices unit;
+    mini_matrices(g, {f.rho, 1.0, f.kappa}, thickness, 0.0, 0.0, unit);
+    t.viscous = unit.K * s.v;
   }
+  if (moved.thickness != 0.0) t.residual = element_residual(m, dt, s);
+  return t;
+}
+
+ElementResidual conditional_derivative(const ScaledTerms& t, const FluidConstants& f, double thickness,
+                                       const FluidSeed& seed) {
+  ElementResidual out{Vec8::Zero(), Vec3::Zero()};
+  if (seed.thickness != 0.0) out = {seed.thickness / thickness * t.residual.rv, seed.thickness / thickness * t.residual.rp};
+  if (seed.rho != 0.0) out.rv += seed.rho / f.rho * t.inertia_body;
+  if (seed.kappa != 0.0) out.rp -= seed.kappa / f.kappa * t.compressibility;
+  if (seed.mu != 0.0) out.rv -= (f.mu > 0.0 ? seed.mu / f.mu : seed.mu) * t.viscous;
   return out;
 }
 

@@ -59,10 +59,22 @@ struct FluidSeed {
   bool any() const { return rho != 0.0 || mu != 0.0 || kappa != 0.0 || thickness != 0.0; }
 };
 
+// The residual's terms that the fluid constants scale, at fixed geometry, velocities and
+// pressures: M, F are proportional to rho, K to mu, Mp to 1/kappa and every term to the
+// thickness. The same for every parameter, so computed once per element, each only where a
+// parameter moves its constant (a non-zero entry of `moved`, e.g. the sum of the seeds' |.|).
+struct ScaledTerms {
+  Vec8 inertia_body;         // F - M (v - vn)/dt
+  Vec3 compressibility;      // -Mp (p - pn)/dt
+  Vec8 viscous;              // K v, or at mu = 0 (where K vanishes) K v of a unit viscosity
+  ElementResidual residual;  // the whole residual
+};
+ScaledTerms scaled_terms(const TriangleGeometry& g, const MiniMatrices& m, const FluidConstants& f, double thickness,
+                         double dt, const ElementState& s, const FluidSeed& moved);
+
 // The residual's derivative with respect to the parameter at fixed geometry, velocities and
-// pressures (the conditional derivative): M, F are proportional to rho, K to mu, Mp to 1/kappa
-// and every term to the thickness.
-ElementResidual conditional_derivative(const TriangleGeometry& g, const MiniMatrices& m, const FluidConstants& f, double thickness,
-                                       double dt, const ElementState& s, const FluidSeed& seed);
+// pressures (the conditional derivative), from the element's scaled terms.
+ElementResidual conditional_derivative(const ScaledTerms& terms, const FluidConstants& f, double thickness,
+                                       const FluidSeed& seed);
 
 }  // namespace pfem::fluid

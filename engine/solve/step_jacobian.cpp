@@ -92,24 +92,33 @@ void StepJacobian::factorize(const ConvergedStep& c) {
 }
 
 Eigen::VectorXd StepJacobian::product(const ConvergedStep& c, const Eigen::VectorXd& x) const {
+  return product(c, Eigen::MatrixXd(x));
+}
+
+Eigen::MatrixXd StepJacobian::product(const ConvergedStep& c, const Eigen::MatrixXd& x) const {
+  // Element by element, each element's unknowns looked up once for all columns, a column at a
+  // time through the fixed-size block (products with a dynamic number of columns cost more).
   const StepNumbering& num = c.num;
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(x.size());
+  Eigen::MatrixXd y = Eigen::MatrixXd::Zero(x.rows(), x.cols());
   for (std::size_t e = 0; e < elements_.size(); ++e) {
-    const std::array<int, 9> u = num.condensed_unknowns(c.mesh.triangles[e], static_cast<int>(e));
-    Eigen::Matrix<double, 9, 1> xe;
-    for (int col = 0; col < 9; ++col) xe(col) = u[col] >= 0 ? x[u[col]] : 0.0;
-    const Eigen::Matrix<double, 9, 1> ye = elements_[e] * xe;
-    for (int r = 0; r < 9; ++r)
-      if (u[r] >= 0) y[u[r]] += ye(r);
-    if (num.has_rider(c.mesh.triangles[e]))
-      put_rider_entries(num, c.mesh.triangles[e], static_cast<int>(e), elements_[e],
-                        [&](int row, int col, double value) { y[row] += value * x[col]; });
+    const auto& tri = c.mesh.triangles[e];
+    const std::array<int, 9> u = num.condensed_unknowns(tri, static_cast<int>(e));
+    for (long k = 0; k < x.cols(); ++k) {
+      Eigen::Matrix<double, 9, 1> xe;
+      for (int col = 0; col < 9; ++col) xe(col) = u[col] >= 0 ? x(u[col], k) : 0.0;
+      const Eigen::Matrix<double, 9, 1> ye = elements_[e].lazyProduct(xe);
+      for (int r = 0; r < 9; ++r)
+        if (u[r] >= 0) y(u[r], k) += ye(r);
+    }
+    if (num.has_rider(tri))
+      put_rider_entries(num, tri, static_cast<int>(e), elements_[e],
+                        [&](int row, int col, double value) { y.row(row) += value * x.row(col); });
   }
   for (int q = 0; q < num.pressures; ++q) {
     const int u = num.node_velocities + q;
-    y[u] -= c.residual.mp[q] / c.settings.dt * x[u];
+    y.row(u) -= c.residual.mp[q] / c.settings.dt * x.row(u);
   }
-  c.structure.add_tangent([&](int row, int col, double value) { y[row] += value * x[col]; });
+  c.structure.add_tangent([&](int row, int col, double value) { y.row(row) += value * x.row(col); });
   return y;
 }
 

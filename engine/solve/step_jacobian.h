@@ -21,8 +21,9 @@ class StepJacobian {
   // Those blocks and the structure's tangent into the LU, on the condensed system's analysis,
   // factorised; throws StepFailure on a non-finite pivot.
   void factorize(const ConvergedStep& c);
-  // The Jacobian's product with x (condensed unknowns).
+  // The Jacobian's product with x (condensed unknowns), or with each column of x.
   Eigen::VectorXd product(const ConvergedStep& c, const Eigen::VectorXd& x) const;
+  Eigen::MatrixXd product(const ConvergedStep& c, const Eigen::MatrixXd& x) const;
   const SupernodalLu& lu() const { return lu_; }
   const std::vector<fluid::GeometricDerivatives>& geometric() const { return geometric_; }
   const std::vector<BubbleCondensation>& bubbles() const { return bubbles_; }

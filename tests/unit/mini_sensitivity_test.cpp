@@ -119,7 +119,7 @@ void check_conditional(const Case& c, const FluidSeed& seed, const Perturb& pert
   MiniMatrices m;
   const TriangleGeometry g = triangle_geometry(c.x, c.y);
   mini_matrices(g, c.f, c.t, c.gx, c.gy, m);
-  const ElementResidual r = conditional_derivative(g, m, c.f, c.t, c.dt, c.s, seed);
+  const ElementResidual r = conditional_derivative(scaled_terms(g, m, c.f, c.t, c.dt, c.s, seed), c.f, c.t, seed);
   Eigen::Matrix<double, 11, 1> exact;
   exact << r.rv, r.rp;
   Case plus = c, minus = c;
