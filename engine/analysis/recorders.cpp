@@ -64,6 +64,24 @@ double element_value(const RecorderSpec& r, const structure::StructureModel& mod
   if (r.quantity == "fiber_stress") return k < 0 ? material.stress() : material.stress_sensitivity(k);
   return k < 0 ? material.strain() : material.strain_sensitivity(k);
 }
+
+// The fluid area's sensitivity to each parameter, sum of d(A/2) over the triangles with
+// dA/dx_a = c_a, dA/dy_a = d_a (each triangle's geometry once for all parameters).
+std::vector<double> fluid_area_sensitivities(const NodeState& nodes, const mesh::FluidMesh& mesh) {
+  std::vector<double> out(nodes.num_params, 0.0);
+  for (const auto& t : mesh.triangles) {
+    std::array<double, 3> x, y;
+    for (int a = 0; a < 3; ++a) x[a] = nodes.x[t[a]], y[a] = nodes.y[t[a]];
+    const fluid::TriangleGeometry g = fluid::triangle_geometry(x, y);
+    for (int k = 0; k < nodes.num_params; ++k)
+      for (int a = 0; a < 3; ++a) {
+        const double* d = nodes.sensitivity(t[a], k);
+        out[k] += 0.5 * (g.c[a] * d[NodeState::kDx] + g.d[a] * d[NodeState::kDy]);
+      }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<double> sample_recorders(const Problem& problem, const NodeState& nodes,
@@ -114,6 +132,8 @@ std::vector<double> sample_recorder_sensitivities(const Problem& problem, const 
     else if (r.quantity == "front_x") node = fluid_extreme(nodes, mesh, true), field = NodeState::kDx;
     else if (r.quantity == "front_y") node = fluid_extreme(nodes, mesh, false), field = NodeState::kDy;
     const int fast = r.quantity == "max_speed" ? fastest(nodes) : -1;
+    const std::vector<double> area = r.quantity == "fluid_area" ? fluid_area_sensitivities(nodes, mesh)
+                                                                : std::vector<double>();
     const ProbeSite site = r.quantity == "wave_gauge" ? wave_gauge_site(mesh, nodes, r.x)
                            : r.quantity == "pressure" ? pressure_site(mesh, nodes, r.x, r.y)
                                                       : ProbeSite{};
@@ -126,16 +146,7 @@ std::vector<double> sample_recorder_sensitivities(const Problem& problem, const 
       } else if (!r.pieces.empty()) {
         value = boundary_value(r, problem, nodes, mesh, k);
       } else if (r.quantity == "fluid_area") {
-        // d(A/2) with dA/dx_a = c_a, dA/dy_a = d_a.
-        for (const auto& t : mesh.triangles) {
-          std::array<double, 3> x, y;
-          for (int a = 0; a < 3; ++a) x[a] = nodes.x[t[a]], y[a] = nodes.y[t[a]];
-          const fluid::TriangleGeometry g = fluid::triangle_geometry(x, y);
-          for (int a = 0; a < 3; ++a) {
-            const double* d = nodes.sensitivity(t[a], k);
-            value += 0.5 * (g.c[a] * d[NodeState::kDx] + g.d[a] * d[NodeState::kDy]);
-          }
-        }
+        value = area[k];
       } else if (r.quantity == "wave_gauge") {
         value = wave_gauge(site, nodes, r.x, k);
       } else if (r.quantity == "pressure") {
