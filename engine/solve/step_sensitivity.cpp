@@ -191,8 +191,12 @@ void StepSensitivity::solve(const ConvergedStep& c, const NodeState& nodes) {
         Eigen::MatrixXd refined = x(Eigen::all, above), correction = residuals(Eigen::all, above);
         lu.solve(correction);
         refined += correction;
-        x(Eigen::all, above) = refined;
-        residuals(Eigen::all, above) = b(Eigen::all, above) - jacobian_.product(c, refined);
+        const Eigen::MatrixXd r = b(Eigen::all, above) - jacobian_.product(c, refined);
+        for (std::size_t i = 0; i < above.size(); ++i) {
+          if (r.col(i).norm() >= residuals.col(above[i]).norm()) continue;  // an LU of perturbed pivots
+          x.col(above[i]) = refined.col(i);
+          residuals.col(above[i]) = r.col(i);
+        }
       }
       for (const long col : above) {
         const Eigen::VectorXd r = residuals.col(col);
