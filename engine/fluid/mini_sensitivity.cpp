@@ -125,7 +125,10 @@ ScaledTerms scaled_terms(const TriangleGeometry& g, const MiniMatrices& m, const
 ElementResidual conditional_derivative(const ScaledTerms& t, const FluidConstants& f, double thickness,
                                        const FluidSeed& seed) {
   ElementResidual out{Vec8::Zero(), Vec3::Zero()};
-  if (seed.thickness != 0.0) out = {seed.thickness / thickness * t.residual.rv, seed.thickness / thickness * t.residual.rp};
+  if (seed.thickness != 0.0) {
+    const double share = seed.thickness / thickness;
+    out = {share * t.residual.rv, share * t.residual.rp};
+  }
   if (seed.rho != 0.0) out.rv += seed.rho / f.rho * t.inertia_body;
   if (seed.kappa != 0.0) out.rp -= seed.kappa / f.kappa * t.compressibility;
   if (seed.mu != 0.0) out.rv -= (f.mu > 0.0 ? seed.mu / f.mu : seed.mu) * t.viscous;
