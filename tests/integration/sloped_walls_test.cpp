@@ -66,8 +66,8 @@ TEST_P(StillWaterInATrapezoid, StaysAtRest) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SlopedWalls, StillWaterInATrapezoid, testing::Values(30.0, 60.0, 75.0),
-                         [](const testing::TestParamInfo<double>& info) {
-                           return "WallsAt" + std::to_string(static_cast<int>(info.param)) + "Degrees";
+                         [](const testing::TestParamInfo<double>& angle) {
+                           return "WallsAt" + std::to_string(static_cast<int>(angle.param)) + "Degrees";
                          });
 
 // A thin wall leaning at atan 3 (71.6 degrees) across a box 0.5 m wide, water 0.2 m deep on its
