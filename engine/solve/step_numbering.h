@@ -76,7 +76,11 @@ struct StepNumbering {
   }
   void add_to_velocity(int i, int c, double value,
                        Eigen::Ref<Eigen::VectorXd> y) const {
-    const VelocityTerms t = velocity_terms(i, c);
+    add_to_terms(velocity_terms(i, c), value, y);
+  }
+  // The same for terms already looked up.
+  static void add_to_terms(const VelocityTerms &t, double value,
+                           Eigen::Ref<Eigen::VectorXd> y) {
     for (int j = 0; j < 2; ++j)
       if (t.u[j] >= 0)
         y[t.u[j]] += t.w[j] * value;

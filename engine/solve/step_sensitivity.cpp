@@ -123,9 +123,7 @@ void StepSensitivity::right_hand_sides(const ConvergedStep& c, const NodeState& 
         sp -= q_e.col(col) * w;
       }
       if (volume.dilatation != 0.0) sp.array() += dsource(e, k);
-      for (int r = 0; r < 6; ++r)
-        for (int j = 0; j < 2; ++j)
-          if (rows[r].u[j] >= 0) rv(rows[r].u[j], k) += rows[r].w[j] * sv(r);
+      for (int r = 0; r < 6; ++r) StepNumbering::add_to_terms(rows[r], sv(r), rv.col(k));
       for (int a = 0; a < 3; ++a) rp(num.corner_p[e][a], k) += sp(a);
       rv(bubble, k) += sv(6), rv(bubble + 1, k) += sv(7);
     }
